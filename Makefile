@@ -1,0 +1,38 @@
+# Entry points for a fresh Debian 12 machine. Each target installs missing system packages first
+# (scripts/install-deps), then configures and builds with the CMake presets.
+JOBS ?= 2
+
+.PHONY: all deps build demo test test-slow sanitize bench format clean
+
+all: build
+
+deps:
+	bash scripts/install-deps
+
+build: deps
+	cmake --preset release
+	cmake --build --preset release -j $(JOBS)
+
+demo: build
+	./build/release/bin/forensim demo --out out/demo
+	@echo "forensim demo: open out/demo/report.html"
+
+test: build
+	ctest --preset release
+
+test-slow: build
+	ctest --preset release-slow
+
+sanitize: deps
+	cmake --preset sanitize
+	cmake --build --preset sanitize -j $(JOBS)
+	ctest --preset sanitize
+
+bench: build
+	./build/release/bin/forensim bench all
+
+format:
+	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+
+clean:
+	rm -rf build out
