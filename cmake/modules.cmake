@@ -4,6 +4,9 @@
 function(forensim_add_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp")
+  if(NOT sources)
+    return()  # module not written yet
+  endif()
   add_library(forensim_${name} STATIC ${sources})
   add_library(forensim::${name} ALIAS forensim_${name})
   target_include_directories(forensim_${name} PUBLIC
@@ -12,4 +15,5 @@ function(forensim_add_module name)
   target_link_libraries(forensim_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS} forensim_warnings
                         forensim_sanitizers)
   target_link_libraries(forensim_${name} INTERFACE forensim_sanitizers)
+  target_link_libraries(forensim INTERFACE forensim_${name})
 endfunction()
