@@ -1,0 +1,40 @@
+#include <gtest/gtest.h>
+
+#include "core/atomic_file.hpp"
+#include "report/html_report.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+
+TEST(HtmlReport, Base64MatchesRfc4648Vectors) {
+  EXPECT_EQ(base64_encode(""), "");
+  EXPECT_EQ(base64_encode("f"), "Zg==");
+  EXPECT_EQ(base64_encode("fo"), "Zm8=");
+  EXPECT_EQ(base64_encode("foo"), "Zm9v");
+  EXPECT_EQ(base64_encode("foob"), "Zm9vYg==");
+  EXPECT_EQ(base64_encode("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(base64_encode("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(base64_encode(std::string("\xff\x00\x10", 3)), "/wAQ");
+}
+
+TEST(HtmlReport, EscapesTextAndEmbedsPictures) {
+  HtmlReport report("Run <1>");
+  report.section("Wound & scab", "a < b");
+  report.figure_png("PNGDATA", "caption \"x\"");
+  report.table({"stage", "s"}, {{"iso<surface", "1.5"}});
+  const std::string html = report.html();
+  EXPECT_NE(html.find("Run &lt;1&gt;"), std::string::npos);
+  EXPECT_NE(html.find("Wound &amp; scab"), std::string::npos);
+  EXPECT_NE(html.find("data:image/png;base64," + base64_encode("PNGDATA")), std::string::npos);
+  EXPECT_NE(html.find("caption &quot;x&quot;"), std::string::npos);
+  EXPECT_NE(html.find("iso&lt;surface"), std::string::npos);
+  EXPECT_EQ(html.find("<1>"), std::string::npos);
+}
+
+TEST(HtmlReport, WritesAtomically) {
+  const auto dir = test::scratch_dir("report");
+  HtmlReport report("t");
+  report.paragraph("hello");
+  report.write(dir / "report.html");
+  EXPECT_NE(read_file(dir / "report.html").find("<p>hello</p>"), std::string::npos);
+}
