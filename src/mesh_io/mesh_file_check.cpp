@@ -1,0 +1,526 @@
+#include "mesh_io/mesh_file_check.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+
+namespace forensim {
+namespace {
+
+constexpr std::uint64_t max_elements = static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max());
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// Reads up to `count` bytes from the start of the file.
+std::string read_prefix(const std::filesystem::path& path, std::size_t count) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path.string(), "cannot open for reading");
+  std::string bytes(count, '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(count));
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  return bytes;
+}
+
+std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+// ---------------------------------------------------------------------------------------------- PLY
+
+struct PlyProperty {
+  int size = 0;        ///< bytes of a scalar, or of each list item
+  int count_size = 0;  ///< bytes of the list length; 0 for scalars
+  bool count_signed = false;
+};
+
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+  std::size_t header_line = 0;
+};
+
+int ply_type_size(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+bool ply_type_signed(std::string_view type) {
+  return type == "char" || type == "int8" || type == "short" || type == "int16" || type == "int" || type == "int32";
+}
+
+/// Reads a binary integer of `size` bytes (1, 2 or 4) as the list length.
+std::int64_t read_binary_count(const unsigned char* p, int size, bool is_signed, bool big_endian) {
+  std::uint32_t v = 0;
+  for (int b = 0; b < size; ++b) {
+    const int shift = big_endian ? 8 * (size - 1 - b) : 8 * b;
+    v |= static_cast<std::uint32_t>(p[b]) << shift;
+  }
+  if (!is_signed) return v;
+  if (size == 1) return static_cast<std::int8_t>(v);
+  if (size == 2) return static_cast<std::int16_t>(v);
+  return static_cast<std::int32_t>(v);
+}
+
+void check_ply(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  const std::string bytes = read_file(path);
+  // Header: text lines up to "end_header".
+  const std::size_t header_limit = std::min<std::size_t>(bytes.size(), std::size_t{1} << 20);
+  const std::size_t end = bytes.find("end_header", 0);
+  require_input(bytes.compare(0, 3, "ply") == 0 && bytes.size() > 3 && (bytes[3] == '\n' || bytes[3] == '\r'), source,
+                "byte 0", "not a PLY file (it does not start with 'ply')");
+  require_input(end != std::string::npos && end < header_limit, source, "header",
+                "no 'end_header' line in the first " + std::to_string(header_limit) + " bytes");
+  std::size_t body = bytes.find('\n', end);
+  require_input(body != std::string::npos, source, "header", "file ends right after 'end_header'");
+  ++body;
+
+  enum class Format { unknown, ascii, little, big } format = Format::unknown;
+  std::vector<PlyElement> elements;
+  std::size_t line_number = 0;
+  std::size_t pos = 0;
+  while (pos < body) {
+    std::size_t eol = bytes.find('\n', pos);
+    if (eol == std::string::npos || eol > body) eol = body;
+    const std::string_view line(bytes.data() + pos, eol - pos);
+    pos = eol + 1;
+    ++line_number;
+    const std::string location = "line " + std::to_string(line_number);
+    const auto words = split_words(line);
+    if (words.empty()) continue;
+    if (words[0] == "format") {
+      require_input(words.size() >= 2, source, location, "incomplete 'format' line");
+      if (words[1] == "ascii")
+        format = Format::ascii;
+      else if (words[1] == "binary_little_endian")
+        format = Format::little;
+      else if (words[1] == "binary_big_endian")
+        format = Format::big;
+      else
+        throw InputError(source, location, "unknown PLY format '" + std::string(words[1]) + "'");
+    } else if (words[0] == "element") {
+      require_input(words.size() == 3, source, location, "'element' needs a name and a count");
+      PlyElement e;
+      e.name = std::string(words[1]);
+      e.header_line = line_number;
+      const auto [ptr, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), e.count);
+      require_input(ec == std::errc() && ptr == words[2].data() + words[2].size(), source, location,
+                    "element count '" + std::string(words[2]) + "' is not a non-negative integer");
+      require_input(e.count <= max_elements, source, location,
+                    "element '" + e.name + "' declares " + std::to_string(e.count) + " items, more than 2^31 - 1");
+      elements.push_back(std::move(e));
+    } else if (words[0] == "property") {
+      require_input(!elements.empty(), source, location, "'property' before any 'element'");
+      PlyProperty p;
+      if (words.size() >= 2 && words[1] == "list") {
+        require_input(words.size() == 5, source, location, "'property list' needs two types and a name");
+        p.count_size = ply_type_size(words[2]);
+        p.count_signed = ply_type_signed(words[2]);
+        p.size = ply_type_size(words[3]);
+        require_input(
+            p.count_size > 0 && p.count_size <= 4 && p.size > 0, source, location,
+            "unknown or unsupported list types '" + std::string(words[2]) + " " + std::string(words[3]) + "'");
+      } else {
+        require_input(words.size() == 3, source, location, "'property' needs a type and a name");
+        p.size = ply_type_size(words[1]);
+        require_input(p.size > 0, source, location, "unknown property type '" + std::string(words[1]) + "'");
+      }
+      elements.back().properties.push_back(p);
+    } else if (words[0] == "end_header") {
+      break;
+    }
+  }
+  require_input(format != Format::unknown, source, "header", "no 'format' line");
+
+  const std::uint64_t body_size = bytes.size() - body;
+  if (format == Format::ascii) {
+    // Each value takes at least one character and one separator; lists are walked token by token.
+    std::size_t cursor = body;
+    const auto next_token = [&](std::string_view& token) {
+      while (cursor < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
+      const std::size_t start = cursor;
+      while (cursor < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
+      token = std::string_view(bytes.data() + start, cursor - start);
+      return !token.empty();
+    };
+    for (const PlyElement& e : elements) {
+      const std::uint64_t min_bytes = e.count * std::max<std::size_t>(e.properties.size(), 1);
+      require_input(min_bytes <= body_size, source, "line " + std::to_string(e.header_line),
+                    "element '" + e.name + "' declares " + std::to_string(e.count) + " items but the file has only " +
+                        std::to_string(body_size) + " bytes of data");
+      for (std::uint64_t i = 0; i < e.count; ++i) {
+        for (const PlyProperty& p : e.properties) {
+          std::string_view token;
+          require_input(next_token(token), source, "byte " + std::to_string(cursor),
+                        "file ends inside element '" + e.name + "' " + std::to_string(i));
+          if (p.count_size == 0) continue;
+          std::int64_t n = -1;
+          std::from_chars(token.data(), token.data() + token.size(), n);
+          const std::uint64_t remaining = bytes.size() - cursor;
+          require_input(n >= 0 && static_cast<std::uint64_t>(n) <= remaining / 2 + 1, source,
+                        "byte " + std::to_string(cursor),
+                        "list length '" + std::string(token) + "' in element '" + e.name + "' " + std::to_string(i) +
+                            " is negative or longer than the rest of the file");
+          for (std::int64_t k = 0; k < n; ++k) {
+            require_input(next_token(token), source, "byte " + std::to_string(cursor),
+                          "file ends inside element '" + e.name + "' " + std::to_string(i));
+          }
+        }
+      }
+    }
+    return;
+  }
+
+  // Binary: fixed-size elements are skipped in one step, elements with lists item by item.
+  const bool big_endian = format == Format::big;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  std::uint64_t cursor = body;
+  for (const PlyElement& e : elements) {
+    const bool has_list =
+        std::any_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.count_size > 0; });
+    std::uint64_t min_stride = 0;
+    for (const PlyProperty& p : e.properties) min_stride += p.count_size > 0 ? p.count_size : p.size;
+    const std::uint64_t remaining = bytes.size() - cursor;
+    require_input(min_stride == 0 || e.count <= remaining / min_stride, source, "line " + std::to_string(e.header_line),
+                  "element '" + e.name + "' declares " + std::to_string(e.count) + " items of at least " +
+                      std::to_string(min_stride) + " bytes but only " + std::to_string(remaining) +
+                      " bytes remain in the file");
+    if (!has_list) {
+      cursor += e.count * min_stride;
+      continue;
+    }
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      for (const PlyProperty& p : e.properties) {
+        if (p.count_size == 0) {
+          require_input(cursor + p.size <= bytes.size(), source, "byte " + std::to_string(cursor),
+                        "file ends inside element '" + e.name + "' " + std::to_string(i));
+          cursor += p.size;
+          continue;
+        }
+        require_input(cursor + p.count_size <= bytes.size(), source, "byte " + std::to_string(cursor),
+                      "file ends inside element '" + e.name + "' " + std::to_string(i));
+        const std::int64_t n = read_binary_count(data + cursor, p.count_size, p.count_signed, big_endian);
+        cursor += p.count_size;
+        require_input(n >= 0 && static_cast<std::uint64_t>(n) <= (bytes.size() - cursor) / p.size, source,
+                      "byte " + std::to_string(cursor - p.count_size),
+                      "list length " + std::to_string(n) + " in element '" + e.name + "' " + std::to_string(i) +
+                          " is negative or longer than the rest of the file");
+        cursor += static_cast<std::uint64_t>(n) * p.size;
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------- STL
+
+void check_stl(const std::filesystem::path& path, std::uintmax_t size) {
+  const std::string source = path.string();
+  const std::string head = read_prefix(path, 1024);
+  if (size >= 84) {
+    std::uint32_t count = 0;
+    for (int b = 0; b < 4; ++b)
+      count |= static_cast<std::uint32_t>(static_cast<unsigned char>(head[80 + b])) << (8 * b);
+    if (84 + 50 * static_cast<std::uint64_t>(count) == size) return;  // consistent binary STL
+  }
+  // Otherwise it must be ASCII STL: "solid" followed by text with "facet" (binary headers may start with
+  // "solid" too, so look for a facet keyword and for the absence of control bytes).
+  const bool starts_solid = head.compare(0, 5, "solid") == 0;
+  const bool textual = std::none_of(head.begin(), head.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 9 || (u > 13 && u < 32);
+  });
+  if (starts_solid && textual &&
+      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos))
+    return;
+  if (size < 84) throw InputError(source, "byte 0", "too short for a binary STL (" + std::to_string(size) + " bytes)");
+  std::uint32_t count = 0;
+  for (int b = 0; b < 4; ++b) count |= static_cast<std::uint32_t>(static_cast<unsigned char>(head[80 + b])) << (8 * b);
+  throw InputError(source, "byte 80",
+                   "binary STL declares " + std::to_string(count) + " triangles (" +
+                       std::to_string(84 + 50 * static_cast<std::uint64_t>(count)) + " bytes) but the file has " +
+                       std::to_string(size) + " bytes");
+}
+
+// ---------------------------------------------------------------------------------------------- OBJ
+
+void check_obj(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  const std::string bytes = read_file(path);
+  // First pass: totals, so faces may refer to vertices defined later (rare but legal).
+  std::uint64_t total[3] = {0, 0, 0};  // v, vt, vn
+  const auto for_each_line = [&](auto&& visit) {
+    std::size_t pos = 0, line_number = 0;
+    while (pos < bytes.size()) {
+      std::size_t eol = bytes.find('\n', pos);
+      if (eol == std::string::npos) eol = bytes.size();
+      ++line_number;
+      std::string_view line(bytes.data() + pos, eol - pos);
+      pos = eol + 1;
+      std::size_t start = 0;
+      while (start < line.size() && (line[start] == ' ' || line[start] == '\t')) ++start;
+      line.remove_prefix(start);
+      if (line.size() < 2) continue;
+      visit(line, line_number);
+    }
+  };
+  for_each_line([&](std::string_view line, std::size_t) {
+    if (line[0] != 'v') return;
+    if (line[1] == ' ' || line[1] == '\t')
+      ++total[0];
+    else if (line[1] == 't')
+      ++total[1];
+    else if (line[1] == 'n')
+      ++total[2];
+  });
+  for (std::uint64_t t : total) {
+    require_input(t <= max_elements, source, "", "more than 2^31 - 1 vertices, texture coordinates or normals");
+  }
+  std::uint64_t seen[3] = {0, 0, 0};
+  const char* names[3] = {"vertex", "texture coordinate", "normal"};
+  for_each_line([&](std::string_view line, std::size_t line_number) {
+    const auto location = [&] { return "line " + std::to_string(line_number); };
+    if (line[0] == 'v' && (line[1] == ' ' || line[1] == '\t' || line[1] == 't' || line[1] == 'n')) {
+      const int kind = (line[1] == 't') ? 1 : (line[1] == 'n') ? 2 : 0;
+      ++seen[kind];
+      const auto words = split_words(line);
+      for (std::size_t w = 1; w < words.size() && w <= 3; ++w) {
+        if (words[w][0] == '#') break;
+        double value = 0.0;
+        const auto [ptr, ec] = std::from_chars(words[w].data(), words[w].data() + words[w].size(), value);
+        const std::string what = std::string(names[kind]) + " coordinate '" + std::string(words[w]) + "'";
+        require_input(ec != std::errc::invalid_argument, source, location(), what + " is not a number");
+        require_input(ec == std::errc() && std::isfinite(value), source, location(), what + " is not a finite number");
+      }
+      return;
+    }
+    if (line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) return;
+    const auto words = split_words(line);
+    for (std::size_t w = 1; w < words.size(); ++w) {
+      std::string_view corner = words[w];
+      if (corner[0] == '#') break;
+      for (int kind = 0; kind < 3 && !corner.empty(); ++kind) {
+        const std::size_t slash = corner.find('/');
+        const std::string_view field = corner.substr(0, slash);
+        corner = (slash == std::string_view::npos) ? std::string_view() : corner.substr(slash + 1);
+        if (field.empty()) continue;  // "1//3"
+        std::int64_t index = 0;
+        const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
+        require_input(ec == std::errc() && ptr == field.data() + field.size(), source, location(),
+                      std::string(names[kind]) + " index '" + std::string(field) + "' is not an integer");
+        const bool valid = (index > 0 && static_cast<std::uint64_t>(index) <= total[kind]) ||
+                           (index < 0 && static_cast<std::uint64_t>(-index) <= seen[kind]);
+        require_input(valid, source, location(),
+                      std::string(names[kind]) + " index " + std::to_string(index) + " is out of range (" +
+                          std::to_string(total[kind]) + " defined)");
+      }
+    }
+  });
+}
+
+// ---------------------------------------------------------------------------------------------- glTF
+
+std::uint32_t read_u32(const std::string& s, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int b = 0; b < 4; ++b) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + b])) << (8 * b);
+  return v;
+}
+
+int gltf_component_size(int type) {
+  switch (type) {
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+int gltf_component_count(const std::string& type) {
+  if (type == "SCALAR") return 1;
+  if (type == "VEC2") return 2;
+  if (type == "VEC3") return 3;
+  if (type == "VEC4" || type == "MAT2") return 4;
+  if (type == "MAT3") return 9;
+  if (type == "MAT4") return 16;
+  return 0;
+}
+
+std::uint64_t json_uint(const nlohmann::json& object, const char* key, std::uint64_t fallback,
+                        const std::string& source, const std::string& location) {
+  const auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  require_input(it->is_number_unsigned() || (it->is_number_integer() && it->get<std::int64_t>() >= 0), source, location,
+                std::string("'") + key + "' is not a non-negative integer");
+  return it->get<std::uint64_t>();
+}
+
+/// Checks buffers, buffer views and accessors of a glTF JSON document against the bytes really present.
+/// `bin_size` is the GLB BIN chunk length (buffer 0 without uri), or -1 for .gltf files.
+void check_gltf_json(const std::filesystem::path& path, std::string_view json_text, std::int64_t bin_size) {
+  const std::string source = path.string();
+  const nlohmann::json doc = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
+  require_input(!doc.is_discarded() && doc.is_object(), source, "JSON", "the glTF JSON does not parse as an object");
+  std::vector<std::uint64_t> buffer_sizes;
+  if (const auto it = doc.find("buffers"); it != doc.end() && it->is_array()) {
+    for (std::size_t b = 0; b < it->size(); ++b) {
+      const nlohmann::json& buffer = (*it)[b];
+      const std::string location = "buffers[" + std::to_string(b) + "]";
+      require_input(buffer.is_object(), source, location, "is not an object");
+      const std::uint64_t declared = json_uint(buffer, "byteLength", 0, source, location);
+      std::uint64_t available = 0;
+      const auto uri = buffer.find("uri");
+      if (uri == buffer.end()) {
+        require_input(bin_size >= 0, source, location, "has no uri and there is no GLB binary chunk");
+        available = static_cast<std::uint64_t>(bin_size);
+      } else if (uri->is_string()) {
+        const std::string u = uri->get<std::string>();
+        if (u.rfind("data:", 0) == 0) {
+          const std::size_t comma = u.find(',');
+          available = comma == std::string::npos ? 0 : (u.size() - comma - 1) / 4 * 3 + 3;
+        } else {
+          std::error_code ec;
+          const auto file = path.parent_path() / u;
+          const auto size = std::filesystem::file_size(file, ec);
+          require_input(!ec, source, location, "buffer file '" + u + "' cannot be read");
+          available = size;
+        }
+      }
+      require_input(
+          declared <= available, source, location,
+          "byteLength " + std::to_string(declared) + " exceeds the " + std::to_string(available) + " bytes available");
+      buffer_sizes.push_back(declared);
+    }
+  }
+  std::vector<std::uint64_t> view_sizes;
+  if (const auto it = doc.find("bufferViews"); it != doc.end() && it->is_array()) {
+    for (std::size_t v = 0; v < it->size(); ++v) {
+      const nlohmann::json& view = (*it)[v];
+      const std::string location = "bufferViews[" + std::to_string(v) + "]";
+      require_input(view.is_object(), source, location, "is not an object");
+      const std::uint64_t buffer = json_uint(view, "buffer", buffer_sizes.size(), source, location);
+      const std::uint64_t offset = json_uint(view, "byteOffset", 0, source, location);
+      const std::uint64_t length = json_uint(view, "byteLength", 0, source, location);
+      require_input(buffer < buffer_sizes.size(), source, location, "refers to a missing buffer");
+      require_input(offset <= buffer_sizes[buffer] && length <= buffer_sizes[buffer] - offset, source, location,
+                    "extends past the end of its buffer");
+      view_sizes.push_back(length);
+    }
+  }
+  if (const auto it = doc.find("accessors"); it != doc.end() && it->is_array()) {
+    for (std::size_t a = 0; a < it->size(); ++a) {
+      const nlohmann::json& accessor = (*it)[a];
+      const std::string location = "accessors[" + std::to_string(a) + "]";
+      require_input(accessor.is_object(), source, location, "is not an object");
+      const std::uint64_t count = json_uint(accessor, "count", 0, source, location);
+      require_input(count <= max_elements, source, location, "count " + std::to_string(count) + " is absurd");
+      const auto type = accessor.find("type");
+      const auto component = accessor.find("componentType");
+      require_input(
+          type != accessor.end() && type->is_string() && component != accessor.end() && component->is_number_integer(),
+          source, location, "has no valid 'type' or 'componentType'");
+      const int element_size =
+          gltf_component_count(type->get<std::string>()) * gltf_component_size(component->get<int>());
+      require_input(element_size > 0, source, location, "has an unknown type or component type");
+      if (accessor.find("bufferView") == accessor.end()) continue;  // all zeros (or sparse): nothing to read
+      const std::uint64_t view = json_uint(accessor, "bufferView", 0, source, location);
+      const std::uint64_t offset = json_uint(accessor, "byteOffset", 0, source, location);
+      require_input(view < view_sizes.size(), source, location, "refers to a missing buffer view");
+      const std::uint64_t needed = count == 0 ? 0 : offset + count * static_cast<std::uint64_t>(element_size);
+      require_input(needed <= view_sizes[view], source, location,
+                    std::to_string(count) + " elements need " + std::to_string(needed) + " bytes but its view has " +
+                        std::to_string(view_sizes[view]));
+    }
+  }
+}
+
+void check_glb(const std::filesystem::path& path, std::uintmax_t size) {
+  const std::string source = path.string();
+  require_input(size >= 20, source, "byte 0", "too short for a GLB file (" + std::to_string(size) + " bytes)");
+  require_input(size <= (std::uintmax_t{1} << 32), source, "", "larger than GLB's 4 GiB limit");
+  const std::string bytes = read_file(path);
+  require_input(bytes.compare(0, 4, "glTF") == 0, source, "byte 0", "not a GLB file (no 'glTF' magic)");
+  require_input(read_u32(bytes, 4) == 2, source, "byte 4",
+                "GLB version " + std::to_string(read_u32(bytes, 4)) + " is not 2");
+  const std::uint64_t length = read_u32(bytes, 8);
+  require_input(length <= bytes.size(), source, "byte 8",
+                "header length " + std::to_string(length) + " exceeds the file size " + std::to_string(bytes.size()));
+  const std::uint64_t json_length = read_u32(bytes, 12);
+  require_input(read_u32(bytes, 16) == 0x4E4F534Au, source, "byte 16", "first chunk is not JSON");
+  require_input(json_length <= length - 20, source, "byte 12",
+                "JSON chunk length " + std::to_string(json_length) + " exceeds the file");
+  std::int64_t bin_size = -1;
+  std::uint64_t next = 20 + json_length;
+  if (next + 8 <= length) {
+    const std::uint64_t bin_length = read_u32(bytes, next);
+    const std::uint32_t type = read_u32(bytes, next + 4);
+    require_input(bin_length <= length - next - 8, source, "byte " + std::to_string(next),
+                  "chunk length " + std::to_string(bin_length) + " exceeds the file");
+    if (type == 0x004E4942u) bin_size = static_cast<std::int64_t>(bin_length);
+  } else {
+    require_input(next == length, source, "byte " + std::to_string(next), "truncated chunk header");
+  }
+  check_gltf_json(path, std::string_view(bytes.data() + 20, json_length), bin_size);
+}
+
+}  // namespace
+
+void check_mesh_file(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw IoError(source, "not a readable file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw IoError(source, "cannot determine the file size: " + ec.message());
+  require_input(size > 0, source, "", "the file is empty");
+  const std::string ext = lower_extension(path);
+  if (ext == ".ply") {
+    check_ply(path);
+  } else if (ext == ".stl") {
+    check_stl(path, size);
+  } else if (ext == ".obj") {
+    check_obj(path);
+  } else if (ext == ".glb") {
+    check_glb(path, size);
+  } else if (ext == ".gltf") {
+    const std::string text = read_file(path, std::size_t{1} << 30);
+    check_gltf_json(path, text, -1);
+  }
+}
+
+}  // namespace forensim

@@ -1,0 +1,96 @@
+// Import: unit handling, welding, and the bad-file corpus (every hostile file must give an InputError
+// naming the file, without crashing or allocating from its declared counts).
+#include <gtest/gtest.h>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "geometry/bounding_box.hpp"
+#include "geometry/mesh_topology.hpp"
+#include "mesh_io/gltf_writer.hpp"
+#include "mesh_io/mesh_import.hpp"
+#include "mesh_io/mesh_writer.hpp"
+#include "mesh_io_test_meshes.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+
+namespace {
+std::filesystem::path corpus(const std::string& name) {
+  return test::tests_dir() / "corpus" / "mesh_io" / name;
+}
+}  // namespace
+
+TEST(MeshImportUnits, GlbInMetresComesInAsMillimetres) {
+  const auto dir = test::scratch_dir("units-glb");
+  const TriMesh box = make_box_mesh(Vec3(0, 0, 0), Vec3(0.2, 0.25, 0.125), 1);  // a head-sized box in metres
+  write_gltf(dir / "head.glb", box, GltfWriteOptions{1.0});
+  const TriMesh mm = import_mesh(dir / "head.glb");
+  const BoundingBox b = bounding_box(mm.positions);
+  EXPECT_NEAR(b.max[0], 200.0, 1e-4);
+  EXPECT_NEAR(b.max[1], 250.0, 1e-4);
+  EXPECT_NEAR(b.max[2], 125.0, 1e-4);
+  // An explicit unit overrides the glTF convention.
+  EXPECT_NEAR(bounding_box(import_mesh(dir / "head.glb", {"mm", 0.0}).positions).max[0], 0.2, 1e-7);
+}
+
+TEST(MeshImportUnits, ObjIsMillimetresUnlessToldOtherwise) {
+  const auto dir = test::scratch_dir("units-obj");
+  write_mesh(dir / "hand.obj", make_box_mesh(Vec3(0, 0, 0), Vec3(8, 19, 3), 1));  // a hand in centimetres
+  EXPECT_NEAR(bounding_box(import_mesh(dir / "hand.obj").positions).max[1], 19.0, 1e-6);
+  EXPECT_NEAR(bounding_box(import_mesh(dir / "hand.obj", {"cm", 0.0}).positions).max[1], 190.0, 1e-5);
+  EXPECT_NEAR(bounding_box(import_mesh(dir / "hand.obj", {"in", 0.0}).positions).max[1], 19.0 * 25.4, 1e-4);
+  // scale > 0 overrides the unit.
+  EXPECT_NEAR(bounding_box(import_mesh(dir / "hand.obj", {"cm", 2.5}).positions).max[1], 47.5, 1e-5);
+  EXPECT_THROW(import_mesh(dir / "hand.obj", {"furlong", 0.0}), InputError);
+  EXPECT_DOUBLE_EQ(mm_per_unit("M"), 1000.0);
+}
+
+TEST(MeshImport, ResultIsWeldedAndClosed) {
+  const auto dir = test::scratch_dir("welded");
+  write_mesh(dir / "box.ply", test::make_uv_box(Vec3(0, 0, 0), Vec3(100, 100, 100), 3));
+  const TriMesh mesh = import_mesh(dir / "box.ply");
+  EXPECT_EQ(mesh.vertex_count(), 6u * 9u + 2u);
+  const TopologyReport r = check_topology(mesh);
+  EXPECT_TRUE(r.is_closed());
+  EXPECT_TRUE(r.is_manifold());
+  EXPECT_TRUE(r.is_oriented());
+}
+
+TEST(MeshImport, ValidCorpusControlFileImports) {
+  const TriMesh mesh = import_mesh(corpus("valid_triangle.glb"), {"mm", 0.0});
+  EXPECT_EQ(mesh.triangle_count(), 1u);
+  EXPECT_EQ(mesh.vertex_count(), 3u);
+}
+
+TEST(MeshImport, MissingFileIsAnIoError) {
+  EXPECT_THROW(import_mesh(corpus("no_such_file.obj")), IoError);
+}
+
+class BadMeshFile : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BadMeshFile, GivesInputErrorNamingTheFile) {
+  const std::filesystem::path path = corpus(GetParam());
+  ASSERT_TRUE(std::filesystem::exists(path)) << path;
+  try {
+    import_mesh(path);
+    FAIL() << "no error for " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), path.string());
+    EXPECT_NE(std::string(e.what()).find(GetParam()), std::string::npos) << e.what();
+    EXPECT_FALSE(e.problem().empty());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, BadMeshFile,
+                         ::testing::Values("empty.obj", "truncated.obj", "garbage.ply", "huge_vertex_count.ply",
+                                           "vertex_count_exceeds_size.ply", "huge_face_list.ply", "wrong_count.stl",
+                                           "nan_coordinate.obj", "face_index_out_of_range.obj",
+                                           "broken_chunk_length.glb", "broken_json_length.glb",
+                                           "huge_accessor_count.gltf"),
+                         [](const ::testing::TestParamInfo<const char*>& param) {
+                           std::string name = param.param;
+                           for (char& c : name) {
+                             if (c == '.') c = '_';
+                           }
+                           return name;
+                         });
