@@ -111,7 +111,8 @@ std::int64_t parse_int(const std::string& text, const std::string& source, const
   if (first != last && *first == '+') ++first;
   std::int64_t v = 0;
   const auto [ptr, ec] = std::from_chars(first, last, v);
-  if (ec == std::errc::result_out_of_range) throw InputError(source, location, what + " '" + text + "' is out of range");
+  if (ec == std::errc::result_out_of_range)
+    throw InputError(source, location, what + " '" + text + "' is out of range");
   if (ec != std::errc() || ptr != last || text.empty()) {
     throw InputError(source, location, what + " '" + text + "' is not an integer");
   }

@@ -17,7 +17,8 @@ TriMesh extract_iso_surface(const ScalarGrid& input, double iso_value, const Iso
   require_input(std::isfinite(iso_value), "iso-surface", "iso value", "is not finite");
   require_input(options.keep_largest_components >= 0, "iso-surface", "keep_largest_components", "is negative");
   input.validate("iso-surface grid");
-  const ScalarGrid resampled = options.resample_factor != 1.0 ? resample_grid(input, options.resample_factor) : ScalarGrid{};
+  const ScalarGrid resampled =
+      options.resample_factor != 1.0 ? resample_grid(input, options.resample_factor) : ScalarGrid{};
   const ScalarGrid& grid = options.resample_factor != 1.0 ? resampled : input;
 
   // OpenVDB meshes level sets: negative inside. Store f = iso - v so values above the iso-value are inside, and
@@ -52,9 +53,7 @@ TriMesh extract_iso_surface(const ScalarGrid& input, double iso_value, const Iso
   // OpenVDB's polygons are counter-clockwise seen from the positive (here: outside) side in index space; reverse
   // them when the index-to-world map is a reflection.
   const bool reverse = m.determinant() < 0.0;
-  const auto add = [&](Index a, Index b, Index c) {
-    mesh.triangles.push_back(reverse ? Tri{a, c, b} : Tri{a, b, c});
-  };
+  const auto add = [&](Index a, Index b, Index c) { mesh.triangles.push_back(reverse ? Tri{a, c, b} : Tri{a, b, c}); };
   mesh.triangles.reserve(triangles.size() + 2 * quads.size());
   for (const auto& t : triangles) add(Index(t[0]), Index(t[1]), Index(t[2]));
   for (const auto& q : quads) {

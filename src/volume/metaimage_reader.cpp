@@ -25,12 +25,10 @@ struct Field {
 
 std::optional<VoxelType> meta_type(const std::string& name) {
   static const std::map<std::string, VoxelType> types = {
-      {"met_char", VoxelType::int8},       {"met_uchar", VoxelType::uint8},
-      {"met_short", VoxelType::int16},     {"met_ushort", VoxelType::uint16},
-      {"met_int", VoxelType::int32},       {"met_uint", VoxelType::uint32},
-      {"met_long", VoxelType::int32},      {"met_ulong", VoxelType::uint32},
-      {"met_long_long", VoxelType::int64}, {"met_ulong_long", VoxelType::uint64},
-      {"met_float", VoxelType::float32},   {"met_double", VoxelType::float64},
+      {"met_char", VoxelType::int8},         {"met_uchar", VoxelType::uint8},   {"met_short", VoxelType::int16},
+      {"met_ushort", VoxelType::uint16},     {"met_int", VoxelType::int32},     {"met_uint", VoxelType::uint32},
+      {"met_long", VoxelType::int32},        {"met_ulong", VoxelType::uint32},  {"met_long_long", VoxelType::int64},
+      {"met_ulong_long", VoxelType::uint64}, {"met_float", VoxelType::float32}, {"met_double", VoxelType::float64},
   };
   const auto it = types.find(to_lower(trim(name)));
   if (it == types.end()) return std::nullopt;
@@ -125,9 +123,9 @@ ScalarGrid read_metaimage(const std::filesystem::path& path) {
   if (const Field* f = field({"elementspacing", "elementsize"})) {
     const std::vector<double> s = parse_numbers(*f, n, src, "ElementSpacing");
     for (std::size_t a = 0; a < n; ++a) {
-      require_input(s[a] > 0.0, src, f->location(),
-                    "ElementSpacing of axis " + std::to_string(a) + " is not positive (" + fmt::format("{}", s[a]) +
-                        ")");
+      require_input(
+          s[a] > 0.0, src, f->location(),
+          "ElementSpacing of axis " + std::to_string(a) + " is not positive (" + fmt::format("{}", s[a]) + ")");
       grid.spacing[Eigen::Index(a)] = s[a];
     }
   }

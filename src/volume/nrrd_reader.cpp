@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <optional>
 
@@ -25,26 +25,46 @@ struct Field {
 
 std::optional<VoxelType> nrrd_type(const std::string& name) {
   static const std::map<std::string, VoxelType> types = {
-      {"signed char", VoxelType::int8},          {"int8", VoxelType::int8},
-      {"int8_t", VoxelType::int8},               {"uchar", VoxelType::uint8},
-      {"unsigned char", VoxelType::uint8},       {"uint8", VoxelType::uint8},
-      {"uint8_t", VoxelType::uint8},             {"short", VoxelType::int16},
-      {"short int", VoxelType::int16},           {"signed short", VoxelType::int16},
-      {"signed short int", VoxelType::int16},    {"int16", VoxelType::int16},
-      {"int16_t", VoxelType::int16},             {"ushort", VoxelType::uint16},
-      {"unsigned short", VoxelType::uint16},     {"unsigned short int", VoxelType::uint16},
-      {"uint16", VoxelType::uint16},             {"uint16_t", VoxelType::uint16},
-      {"int", VoxelType::int32},                 {"signed int", VoxelType::int32},
-      {"int32", VoxelType::int32},               {"int32_t", VoxelType::int32},
-      {"uint", VoxelType::uint32},               {"unsigned int", VoxelType::uint32},
-      {"uint32", VoxelType::uint32},             {"uint32_t", VoxelType::uint32},
-      {"longlong", VoxelType::int64},            {"long long", VoxelType::int64},
-      {"long long int", VoxelType::int64},       {"signed long long", VoxelType::int64},
-      {"signed long long int", VoxelType::int64}, {"int64", VoxelType::int64},
-      {"int64_t", VoxelType::int64},             {"ulonglong", VoxelType::uint64},
-      {"unsigned long long", VoxelType::uint64}, {"unsigned long long int", VoxelType::uint64},
-      {"uint64", VoxelType::uint64},             {"uint64_t", VoxelType::uint64},
-      {"float", VoxelType::float32},             {"double", VoxelType::float64},
+      {"signed char", VoxelType::int8},
+      {"int8", VoxelType::int8},
+      {"int8_t", VoxelType::int8},
+      {"uchar", VoxelType::uint8},
+      {"unsigned char", VoxelType::uint8},
+      {"uint8", VoxelType::uint8},
+      {"uint8_t", VoxelType::uint8},
+      {"short", VoxelType::int16},
+      {"short int", VoxelType::int16},
+      {"signed short", VoxelType::int16},
+      {"signed short int", VoxelType::int16},
+      {"int16", VoxelType::int16},
+      {"int16_t", VoxelType::int16},
+      {"ushort", VoxelType::uint16},
+      {"unsigned short", VoxelType::uint16},
+      {"unsigned short int", VoxelType::uint16},
+      {"uint16", VoxelType::uint16},
+      {"uint16_t", VoxelType::uint16},
+      {"int", VoxelType::int32},
+      {"signed int", VoxelType::int32},
+      {"int32", VoxelType::int32},
+      {"int32_t", VoxelType::int32},
+      {"uint", VoxelType::uint32},
+      {"unsigned int", VoxelType::uint32},
+      {"uint32", VoxelType::uint32},
+      {"uint32_t", VoxelType::uint32},
+      {"longlong", VoxelType::int64},
+      {"long long", VoxelType::int64},
+      {"long long int", VoxelType::int64},
+      {"signed long long", VoxelType::int64},
+      {"signed long long int", VoxelType::int64},
+      {"int64", VoxelType::int64},
+      {"int64_t", VoxelType::int64},
+      {"ulonglong", VoxelType::uint64},
+      {"unsigned long long", VoxelType::uint64},
+      {"unsigned long long int", VoxelType::uint64},
+      {"uint64", VoxelType::uint64},
+      {"uint64_t", VoxelType::uint64},
+      {"float", VoxelType::float32},
+      {"double", VoxelType::float64},
   };
   const auto it = types.find(to_lower(trim(name)));
   if (it == types.end()) return std::nullopt;
@@ -92,7 +112,8 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
   const std::string src = path.string();
   const HeaderText header = read_header_text(path, true, "");
   require_input(!header.lines.empty() && header.lines[0].text.rfind("NRRD000", 0) == 0 &&
-                    header.lines[0].text.size() == 8 && header.lines[0].text[7] >= '1' && header.lines[0].text[7] <= '5',
+                    header.lines[0].text.size() == 8 && header.lines[0].text[7] >= '1' &&
+                    header.lines[0].text[7] <= '5',
                 src, "line 1", "not a NRRD file (expected the magic NRRD0001..NRRD0005)");
 
   std::map<std::string, Field> fields;
@@ -138,9 +159,9 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
                 "dimension " + std::to_string(dimension) + " is not supported (scalar volumes have 2 or 3 axes)");
   const Field& sizes_field = required("sizes");
   const std::vector<std::string> size_words = split_words(sizes_field.value);
-  require_input(std::int64_t(size_words.size()) == dimension, src, sizes_field.location(),
-                "sizes lists " + std::to_string(size_words.size()) + " numbers for dimension " +
-                    std::to_string(dimension));
+  require_input(
+      std::int64_t(size_words.size()) == dimension, src, sizes_field.location(),
+      "sizes lists " + std::to_string(size_words.size()) + " numbers for dimension " + std::to_string(dimension));
   std::int64_t sizes[3] = {1, 1, 1};
   for (std::size_t a = 0; a < size_words.size(); ++a) {
     sizes[a] = parse_int(size_words[a], src, sizes_field.location(), "size");
@@ -211,9 +232,9 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
     }
   } else if (const Field* sp = field("spacings")) {
     const std::vector<std::string> words = split_words(sp->value);
-    require_input(std::int64_t(words.size()) == dimension, src, sp->location(),
-                  "spacings lists " + std::to_string(words.size()) + " numbers for dimension " +
-                      std::to_string(dimension));
+    require_input(
+        std::int64_t(words.size()) == dimension, src, sp->location(),
+        "spacings lists " + std::to_string(words.size()) + " numbers for dimension " + std::to_string(dimension));
     for (std::size_t a = 0; a < words.size(); ++a) {
       const double s = parse_double(words[a], src, sp->location(), "spacing");
       require_input(std::isfinite(s) && s != 0.0, src, sp->location(),
@@ -290,11 +311,11 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
       const std::int64_t hi = parse_int(words[2], src, data_field->location(), "data file max");
       const std::int64_t step = parse_int(words[3], src, data_field->location(), "data file step");
       if (words.size() == 5) read_subdim(words[4]);
-      require_input(step != 0 && (hi - lo) / step >= 0 && std::abs(lo) < (std::int64_t{1} << 40) &&
-                        std::abs(hi) < (std::int64_t{1} << 40),
-                    src, data_field->location(),
-                    "data file numbers " + words[1] + " to " + words[2] + " in steps of " + words[3] +
-                        " do not form a range");
+      require_input(
+          step != 0 && (hi - lo) / step >= 0 && std::abs(lo) < (std::int64_t{1} << 40) &&
+              std::abs(hi) < (std::int64_t{1} << 40),
+          src, data_field->location(),
+          "data file numbers " + words[1] + " to " + words[2] + " in steps of " + words[3] + " do not form a range");
       const std::int64_t n_files = (hi - lo) / step + 1;
       require_input(std::uint64_t(n_files) <= count, src, data_field->location(),
                     std::to_string(n_files) + " data files for " + std::to_string(count) + " voxels");

@@ -19,9 +19,13 @@ ScalarGrid ScalarGrid::filled(int nx, int ny, int nz, float fill) {
   return g;
 }
 
-Mat3 ScalarGrid::index_to_world_matrix() const { return direction * spacing.asDiagonal(); }
+Mat3 ScalarGrid::index_to_world_matrix() const {
+  return direction * spacing.asDiagonal();
+}
 
-Vec3 ScalarGrid::index_to_world(const Vec3& index) const { return origin + index_to_world_matrix() * index; }
+Vec3 ScalarGrid::index_to_world(const Vec3& index) const {
+  return origin + index_to_world_matrix() * index;
+}
 
 Vec3 ScalarGrid::world_to_index(const Vec3& world) const {
   return index_to_world_matrix().inverse() * (world - origin);
@@ -86,9 +90,9 @@ void ScalarGrid::validate(const std::string& source) const {
   require_input(values.size() == count, source, "values",
                 "holds " + std::to_string(values.size()) + " values for " + std::to_string(count) + " voxels");
   for (int a = 0; a < 3; ++a) {
-    require_input(std::isfinite(spacing[a]) && spacing[a] > 0.0, source, "spacing",
-                  "axis " + std::to_string(a) + " spacing " + std::to_string(spacing[a]) +
-                      " mm is not a positive finite number");
+    require_input(
+        std::isfinite(spacing[a]) && spacing[a] > 0.0, source, "spacing",
+        "axis " + std::to_string(a) + " spacing " + std::to_string(spacing[a]) + " mm is not a positive finite number");
     require_input(std::isfinite(origin[a]), source, "origin", "is not finite");
   }
   require_input(direction.allFinite(), source, "direction", "is not finite");

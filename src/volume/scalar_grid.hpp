@@ -22,11 +22,11 @@ inline constexpr std::uint64_t k_max_grid_voxels = std::uint64_t{1} << 31;
 inline constexpr std::int64_t k_max_grid_axis = std::int64_t{1} << 20;
 
 struct ScalarGrid {
-  int nx = 0, ny = 0, nz = 0;             ///< samples along i, j, k
-  Vec3 spacing = Vec3::Ones();            ///< mm between neighbouring samples along i, j, k (all > 0)
-  Vec3 origin = Vec3::Zero();             ///< world position (LPS mm) of sample (0, 0, 0)
-  Mat3 direction = Mat3::Identity();      ///< columns = unit world directions of the i, j, k axes (LPS)
-  std::vector<float> values;              ///< nx*ny*nz samples, i fastest, then j, then k
+  int nx = 0, ny = 0, nz = 0;         ///< samples along i, j, k
+  Vec3 spacing = Vec3::Ones();        ///< mm between neighbouring samples along i, j, k (all > 0)
+  Vec3 origin = Vec3::Zero();         ///< world position (LPS mm) of sample (0, 0, 0)
+  Mat3 direction = Mat3::Identity();  ///< columns = unit world directions of the i, j, k axes (LPS)
+  std::vector<float> values;          ///< nx*ny*nz samples, i fastest, then j, then k
 
   /// A grid of the given size filled with `fill`. Throws InputError when a size is not positive or the product
   /// exceeds k_max_grid_voxels.

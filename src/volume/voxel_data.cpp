@@ -82,16 +82,26 @@ std::size_t voxel_type_size(VoxelType type) {
 
 const char* voxel_type_name(VoxelType type) {
   switch (type) {
-    case VoxelType::int8: return "int8";
-    case VoxelType::uint8: return "uint8";
-    case VoxelType::int16: return "int16";
-    case VoxelType::uint16: return "uint16";
-    case VoxelType::int32: return "int32";
-    case VoxelType::uint32: return "uint32";
-    case VoxelType::int64: return "int64";
-    case VoxelType::uint64: return "uint64";
-    case VoxelType::float32: return "float32";
-    case VoxelType::float64: return "float64";
+    case VoxelType::int8:
+      return "int8";
+    case VoxelType::uint8:
+      return "uint8";
+    case VoxelType::int16:
+      return "int16";
+    case VoxelType::uint16:
+      return "uint16";
+    case VoxelType::int32:
+      return "int32";
+    case VoxelType::uint32:
+      return "uint32";
+    case VoxelType::int64:
+      return "int64";
+    case VoxelType::uint64:
+      return "uint64";
+    case VoxelType::float32:
+      return "float32";
+    case VoxelType::float64:
+      return "float64";
   }
   return "?";
 }
@@ -99,22 +109,43 @@ const char* voxel_type_name(VoxelType type) {
 void decode_voxels(const unsigned char* bytes, std::size_t count, VoxelType type, bool big_endian, float* out) {
   const bool swap = big_endian != (std::endian::native == std::endian::big);
   switch (type) {
-    case VoxelType::int8: decode_as<std::int8_t>(bytes, count, swap, out); break;
-    case VoxelType::uint8: decode_as<std::uint8_t>(bytes, count, swap, out); break;
-    case VoxelType::int16: decode_as<std::int16_t>(bytes, count, swap, out); break;
-    case VoxelType::uint16: decode_as<std::uint16_t>(bytes, count, swap, out); break;
-    case VoxelType::int32: decode_as<std::int32_t>(bytes, count, swap, out); break;
-    case VoxelType::uint32: decode_as<std::uint32_t>(bytes, count, swap, out); break;
-    case VoxelType::int64: decode_as<std::int64_t>(bytes, count, swap, out); break;
-    case VoxelType::uint64: decode_as<std::uint64_t>(bytes, count, swap, out); break;
-    case VoxelType::float32: decode_as<float>(bytes, count, swap, out); break;
-    case VoxelType::float64: decode_as<double>(bytes, count, swap, out); break;
+    case VoxelType::int8:
+      decode_as<std::int8_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::uint8:
+      decode_as<std::uint8_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::int16:
+      decode_as<std::int16_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::uint16:
+      decode_as<std::uint16_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::int32:
+      decode_as<std::int32_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::uint32:
+      decode_as<std::uint32_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::int64:
+      decode_as<std::int64_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::uint64:
+      decode_as<std::uint64_t>(bytes, count, swap, out);
+      break;
+    case VoxelType::float32:
+      decode_as<float>(bytes, count, swap, out);
+      break;
+    case VoxelType::float64:
+      decode_as<double>(bytes, count, swap, out);
+      break;
   }
 }
 
 std::uint64_t max_voxels_available(const VoxelBlockSource& block, VoxelType type) {
   const std::uint64_t size = file_size_or_throw(block.file, block.source);
-  require_input(block.line_skip >= 0, block.source, "line skip", "is negative (" + std::to_string(block.line_skip) + ")");
+  require_input(block.line_skip >= 0, block.source, "line skip",
+                "is negative (" + std::to_string(block.line_skip) + ")");
   require_input(block.byte_skip >= -1, block.source, "byte skip",
                 "is negative (" + std::to_string(block.byte_skip) + "; only -1 is allowed)");
   require_input(block.byte_skip != -1 || block.encoding == VoxelEncoding::raw, block.source, "byte skip",

@@ -32,12 +32,12 @@ void decode_voxels(const unsigned char* bytes, std::size_t count, VoxelType type
 
 /// Where one block of voxels lives in a file.
 struct VoxelBlockSource {
-  std::filesystem::path file;     ///< the data file
-  std::string source;             ///< name for errors (the header file, for detached data)
-  std::uint64_t offset = 0;       ///< bytes before the block's region (an attached header's length)
+  std::filesystem::path file;  ///< the data file
+  std::string source;          ///< name for errors (the header file, for detached data)
+  std::uint64_t offset = 0;    ///< bytes before the block's region (an attached header's length)
   VoxelEncoding encoding = VoxelEncoding::raw;
-  std::int64_t line_skip = 0;     ///< text lines to skip (on the file's bytes, before decompression)
-  std::int64_t byte_skip = 0;     ///< bytes to skip (after decompression for gzip); -1 = the data ends the file (raw)
+  std::int64_t line_skip = 0;  ///< text lines to skip (on the file's bytes, before decompression)
+  std::int64_t byte_skip = 0;  ///< bytes to skip (after decompression for gzip); -1 = the data ends the file (raw)
 };
 
 /// Upper bound on how many voxels of `type` the source can hold, from the file's size alone (deflate cannot
