@@ -98,13 +98,17 @@ SliceImage read_slice(const std::filesystem::path& file) {
   if (!image.GetBuffer(buffer.data())) throw InputError(src, "(7FE0,0010) PixelData", "cannot decode the pixel data");
   s.values.resize(count);
   decode_voxels(reinterpret_cast<const unsigned char*>(buffer.data()), count, type, false, s.values.data());
-  const double* o = image.GetOrigin();
-  const double* dc = image.GetDirectionCosines();
-  const double* sp = image.GetSpacing();
+  // GDCM's Image keeps only NumberOfDimensions origin/spacing components; read the full values from the file.
+  const std::vector<double> o = gdcm::ImageHelper::GetOriginValue(reader.GetFile());
+  const std::vector<double> dc = gdcm::ImageHelper::GetDirectionCosinesValue(reader.GetFile());
+  const std::vector<double> sp = gdcm::ImageHelper::GetSpacingValue(reader.GetFile());
+  require_input(o.size() >= 3, src, "(0020,0032) ImagePositionPatient", "needs three numbers");
+  require_input(dc.size() >= 6, src, "(0020,0037) ImageOrientationPatient", "needs six numbers");
+  require_input(sp.size() >= 2, src, "(0028,0030) PixelSpacing", "needs two numbers");
   s.origin = Vec3(o[0], o[1], o[2]);
   s.row = Vec3(dc[0], dc[1], dc[2]);
   s.col = Vec3(dc[3], dc[4], dc[5]);
-  s.spacing = Vec3(sp[0], sp[1], s.dims[2] > 1 ? sp[2] : 1.0);
+  s.spacing = Vec3(sp[0], sp[1], s.dims[2] > 1 && sp.size() >= 3 ? sp[2] : 1.0);
   s.slope = image.GetSlope();
   s.intercept = image.GetIntercept();
   require_input(s.origin.allFinite(), src, "(0020,0032) ImagePositionPatient", "is not finite");
