@@ -1,0 +1,94 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "geometry/mesh_topology.hpp"
+#include "geometry/primitives.hpp"
+#include "mesh_processing/decimate.hpp"
+#include "mesh_processing/remesh_isotropic.hpp"
+
+using namespace forensim;
+
+namespace {
+
+double mean_edge_length(const TriMesh& mesh) {
+  const auto edges = unique_edges(mesh.triangles);
+  double sum = 0.0;
+  for (const auto& e : edges) sum += (mesh.positions[e[0]] - mesh.positions[e[1]]).norm();
+  return sum / static_cast<double>(edges.size());
+}
+
+}  // namespace
+
+TEST(RemeshIsotropic, SphereReachesTargetAndKeepsVolume) {
+  const TriMesh sphere = make_icosphere(Vec3(1, -2, 0.5), 10.0, 3);  // edges about 2.2 mm
+  const double target = 1.0;
+  const TriMesh remeshed = remesh_isotropic(sphere, target, 3);
+  EXPECT_NEAR(mean_edge_length(remeshed), target, 0.15 * target);
+  EXPECT_NEAR(enclosed_volume(remeshed), enclosed_volume(sphere), 0.02 * enclosed_volume(sphere));
+  const TopologyReport t = check_topology(remeshed);
+  EXPECT_TRUE(t.is_closed() && t.is_manifold() && t.is_oriented());
+  EXPECT_EQ(remeshed.normals.size(), remeshed.positions.size());
+  EXPECT_GT(remeshed.triangle_count(), 3 * sphere.triangle_count());
+}
+
+TEST(RemeshIsotropic, OpenBorderStaysInPlace) {
+  const TriMesh sphere = make_icosphere(Vec3::Zero(), 5.0, 3);
+  std::vector<bool> keep(sphere.triangle_count(), true);
+  for (std::size_t f = 0; f < sphere.triangle_count(); ++f) {
+    const Tri& t = sphere.triangles[f];
+    if ((sphere.positions[t[0]] + sphere.positions[t[1]] + sphere.positions[t[2]]).z() > 0.0) keep[f] = false;
+  }
+  const TriMesh bowl = extract_triangles(sphere, keep);
+  const TriMesh remeshed = remesh_isotropic(bowl, 0.5, 3);
+  const TopologyReport t = check_topology(remeshed);
+  EXPECT_EQ(t.boundary_loop_count, 1u);
+  EXPECT_TRUE(t.is_manifold() && t.is_oriented());
+  // Every vertex stays on the sphere, border ones included (they only get split along the old border).
+  double max_z_border = -1e9;
+  for (const Vec3& p : remeshed.positions) {
+    EXPECT_NEAR(p.norm(), 5.0, 0.1);
+    max_z_border = std::max(max_z_border, p.z());
+  }
+  EXPECT_LT(max_z_border, 1.5);
+  // Protected borders leave a band of shorter edges, so the tolerance is wider than on a closed sphere.
+  EXPECT_NEAR(mean_edge_length(remeshed), 0.5, 0.2 * 0.5);
+}
+
+TEST(RemeshIsotropic, RejectsBadTarget) {
+  const TriMesh sphere = make_icosphere(Vec3::Zero(), 1.0, 1);
+  EXPECT_THROW(remesh_isotropic(sphere, 0.0), InputError);
+  EXPECT_THROW(remesh_isotropic(sphere, 1.0, -1), InputError);
+}
+
+TEST(Decimate, SphereReachesTargetWithSmallError) {
+  const double radius = 10.0;
+  const TriMesh sphere = make_icosphere(Vec3::Zero(), radius, 5);  // 20480 triangles
+  const std::size_t target = 2000;
+  const TriMesh coarse = decimate(sphere, target);
+  EXPECT_LE(coarse.triangle_count(), target);
+  EXPECT_GE(coarse.triangle_count(), target - 2);
+  const TopologyReport t = check_topology(coarse);
+  EXPECT_TRUE(t.is_closed() && t.is_manifold() && t.is_oriented());
+  // One-sided Hausdorff-like error against the analytic sphere: vertices and triangle centroids.
+  double worst = 0.0;
+  for (const Vec3& p : coarse.positions) worst = std::max(worst, std::abs(p.norm() - radius));
+  for (const Tri& tri : coarse.triangles) {
+    const Vec3 c = (coarse.positions[tri[0]] + coarse.positions[tri[1]] + coarse.positions[tri[2]]) / 3.0;
+    worst = std::max(worst, std::abs(c.norm() - radius));
+  }
+  // A uniform 2000-triangle icosphere-like mesh has edges ~0.8 R/sqrt(...)~1.6 and centroid sag ~0.04 R.
+  EXPECT_LT(worst, 0.05 * radius);
+  EXPECT_NEAR(enclosed_volume(coarse), enclosed_volume(sphere), 0.03 * enclosed_volume(sphere));
+  EXPECT_EQ(coarse.normals.size(), coarse.positions.size());
+}
+
+TEST(Decimate, TargetAboveCountKeepsMesh) {
+  const TriMesh box = make_box_mesh(Vec3::Zero(), Vec3::Ones(), 2);
+  const TriMesh same = decimate(box, 10000);
+  EXPECT_EQ(same.triangle_count(), box.triangle_count());
+  EXPECT_NEAR(enclosed_volume(same), 1.0, 1e-12);
+  EXPECT_THROW(decimate(box, 0), InputError);
+}
