@@ -556,7 +556,11 @@ void append_binary(std::string& out, T value) {
 
 TetMesh read_gmsh(const std::filesystem::path& path) {
   const std::string bytes = read_file(path);
-  return GmshReader(bytes, path.string()).read();
+  return parse_gmsh(bytes, path.string());
+}
+
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source) {
+  return GmshReader(bytes, source).read();
 }
 
 void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool binary) {

@@ -11,6 +11,8 @@
 /// sense, so node order is kept as is.
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "geometry/tet_mesh.hpp"
 
@@ -25,6 +27,8 @@ namespace forensim {
 /// malformed, truncated or unsupported file (MSH 4.0, 2.2 binary, big-endian binary, undefined node tags,
 /// non-finite coordinates, counts that do not fit the file).
 TetMesh read_gmsh(const std::filesystem::path& path);
+/// read_gmsh on file contents already in memory (an upload, a test); `source` names them in errors.
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source);
 
 /// Writes `mesh` as MSH 4.1 (ASCII, or binary when `binary`), atomically. Positions are written exactly
 /// (shortest round-trip decimal in ASCII, IEEE doubles in binary); node tags are 1..#V in index order and

@@ -37,8 +37,11 @@ void PvdSeries::write() const {
 }
 
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
-  const std::string source = path.string();
   const std::string bytes = read_file(path, std::size_t{256} << 20);
+  return parse_pvd(bytes, path.string());
+}
+
+std::vector<PvdEntry> parse_pvd(std::string_view bytes, const std::string& source) {
   const XmlDocument doc = parse_xml(bytes, source);
   const std::string* type = doc.root.attribute("type");
   if (doc.root.name != "VTKFile" || !type || *type != "Collection") {

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -44,5 +45,7 @@ class PvdSeries {
 /// cannot be read, InputError(path, "line N", problem) when it is not a VTK Collection or a timestep is not
 /// a finite number.
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& path);
+/// read_pvd on file contents already in memory; `source` names them in errors.
+std::vector<PvdEntry> parse_pvd(std::string_view bytes, const std::string& source);
 
 }  // namespace forensim

@@ -100,7 +100,7 @@ std::vector<std::string> default_names(const char* prefix, std::size_t count) {
 }
 
 /// Reads the .node file; returns the first index (0 or 1).
-std::int64_t read_node_file(const std::string& bytes, const std::string& source, TetMesh& mesh) {
+std::int64_t read_node_file(std::string_view bytes, const std::string& source, TetMesh& mesh) {
   TetgenLines in(bytes, source);
   const auto& header = in.next();
   if (header.empty()) in.fail("empty .node file");
@@ -145,7 +145,7 @@ std::int64_t read_node_file(const std::string& bytes, const std::string& source,
   return first;
 }
 
-void read_ele_file(const std::string& bytes, const std::string& source, std::int64_t first, TetMesh& mesh) {
+void read_ele_file(std::string_view bytes, const std::string& source, std::int64_t first, TetMesh& mesh) {
   TetgenLines in(bytes, source);
   const auto& header = in.next();
   if (header.empty()) in.fail("empty .ele file");
@@ -255,13 +255,20 @@ TetMesh read_tetgen(const std::filesystem::path& node_or_ele_or_basename) {
   if (base.extension() == ".node" || base.extension() == ".ele") base.replace_extension();
   const std::filesystem::path node_path = with_extension(base, ".node");
   const std::filesystem::path ele_path = with_extension(base, ".ele");
+  const std::string node_bytes = read_file(node_path);
+  const std::string ele_bytes = read_file(ele_path);
+  return parse_tetgen(node_bytes, ele_bytes, node_path.string(), ele_path.string());
+}
+
+TetMesh parse_tetgen(std::string_view node_bytes, std::string_view ele_bytes, const std::string& node_source,
+                     const std::string& ele_source) {
   TetMesh mesh;
-  const std::int64_t first = read_node_file(read_file(node_path), node_path.string(), mesh);
-  read_ele_file(read_file(ele_path), ele_path.string(), first, mesh);
+  const std::int64_t first = read_node_file(node_bytes, node_source, mesh);
+  read_ele_file(ele_bytes, ele_source, first, mesh);
   bool labelled = false;
   for (int label : mesh.tet_labels) labelled = labelled || label != tissue_flesh;
   if (!labelled) mesh.tet_labels.clear();
-  mesh.validate(ele_path.string());
+  mesh.validate(ele_source);
   return mesh;
 }
 

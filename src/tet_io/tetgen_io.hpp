@@ -12,6 +12,8 @@
 /// named "attribute_<i>" / "tet_attribute_<i>". Names "<n>.x", "<n>.y", "<n>.z" in a row form a vector field.
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "geometry/tet_mesh.hpp"
 
@@ -23,6 +25,9 @@ namespace forensim {
 /// for a malformed file (bad counts, non-finite values, indices out of range or not consecutive,
 /// non-integral region attributes, fewer lines than declared).
 TetMesh read_tetgen(const std::filesystem::path& node_or_ele_or_basename);
+/// read_tetgen on the contents of the two files already in memory; the sources name them in errors.
+TetMesh parse_tetgen(std::string_view node_bytes, std::string_view ele_bytes, const std::string& node_source,
+                     const std::string& ele_source);
 
 /// Writes `<basename>.node` and `<basename>.ele` (each atomically), 1-based like TetGen's own output.
 /// Positions and fields are written exactly (shortest round-trip decimals). Vertex scalar and vector fields

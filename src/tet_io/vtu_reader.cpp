@@ -111,7 +111,7 @@ bool integer_at(const std::string& bytes, std::size_t i, const TypeInfo& t, std:
 
 class VtuReader {
  public:
-  VtuReader(const std::string& bytes, std::string source) : m_bytes(bytes), m_source(std::move(source)) {}
+  VtuReader(std::string_view bytes, std::string source) : m_bytes(bytes), m_source(std::move(source)) {}
 
   TetMesh read() {
     m_doc = parse_xml(m_bytes, m_source);
@@ -246,7 +246,7 @@ class VtuReader {
            "offset '" + offset_text + "' is outside the appended data (" + std::to_string(end - begin) + " bytes)");
     }
     const std::size_t start = begin + static_cast<std::size_t>(offset);
-    return decode_vtk_array(std::string_view(m_bytes).substr(start, end - start), m_header, m_compressed,
+    return decode_vtk_array(m_bytes.substr(start, end - start), m_header, m_compressed,
                             static_cast<std::size_t>(expected), m_source, start);
   }
 
@@ -398,7 +398,7 @@ class VtuReader {
     }
   }
 
-  const std::string& m_bytes;
+  std::string_view m_bytes;
   std::string m_source;
   XmlDocument m_doc;
   VtkHeaderType m_header = VtkHeaderType::uint32;
@@ -409,7 +409,11 @@ class VtuReader {
 
 TetMesh read_vtu(const std::filesystem::path& path) {
   const std::string bytes = read_file(path);
-  return VtuReader(bytes, path.string()).read();
+  return parse_vtu(bytes, path.string());
+}
+
+TetMesh parse_vtu(std::string_view bytes, const std::string& source) {
+  return VtuReader(bytes, source).read();
 }
 
 }  // namespace forensim

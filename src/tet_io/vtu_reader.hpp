@@ -3,6 +3,8 @@
 /// the same layouts from ParaView/VTK (versions 0.1, 1.0 and 2.x).
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "geometry/tet_mesh.hpp"
 
@@ -18,5 +20,7 @@ namespace forensim {
 /// malformed input (counts not matching the data, truncated or corrupt blocks, bad base64, non-finite
 /// points, NaN fields, indices out of range). Throws IoError when the file cannot be read.
 TetMesh read_vtu(const std::filesystem::path& path);
+/// read_vtu on file contents already in memory; `source` names them in errors.
+TetMesh parse_vtu(std::string_view bytes, const std::string& source);
 
 }  // namespace forensim
