@@ -28,11 +28,13 @@ TriMesh extract_iso_surface(const ScalarGrid& input, double iso_value, const Iso
   const double span = std::max(1.0, double(hi) - double(lo));
   const float background = static_cast<float>(std::max(iso_value - double(lo), 1e-3 * span));
 
+  const float nudge = static_cast<float>(1e-4 * span);
   openvdb::initialize();
   std::vector<float> shifted(grid.values.size());
   for (std::size_t i = 0; i < shifted.size(); ++i) {
     const float v = grid.values[i];
-    shifted[i] = std::isnan(v) ? background : static_cast<float>(iso_value - double(v));
+    const float f = static_cast<float>(iso_value - double(v));
+    shifted[i] = std::isnan(v) ? background : (f == 0.0f ? nudge : f);
   }
   const openvdb::CoordBBox box(openvdb::Coord(0, 0, 0), openvdb::Coord(grid.nx - 1, grid.ny - 1, grid.nz - 1));
   openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, shifted.data());
