@@ -6,10 +6,12 @@
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnull-dereference"  // false positives inside CGAL's containers
+// number_utils.h must come first: Bounded_normal_change_placement.h calls is_positive without including it.
+#include <CGAL/number_utils.h>
+
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_placement.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
-#include <CGAL/number_utils.h>  // must precede Bounded_normal_change_placement.h (it calls is_positive)
 #pragma GCC diagnostic pop
 
 #include "core/error.hpp"
