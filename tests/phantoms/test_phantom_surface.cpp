@@ -17,10 +17,10 @@ TEST(PhantomSurface, SkinAndBoneMeshesAreClosedAndBoneIsInside) {
     EXPECT_TRUE(check_topology(bone).is_closed()) << name;
     EXPECT_GT(enclosed_volume(skin), 4.0 * enclosed_volume(bone)) << name;
     EXPECT_GT(enclosed_volume(bone), 0.0) << name;
-    // Surface vertices lie on the zero level set to within a fraction of the voxel size.
+    // Surface vertices lie on the zero level set to within half a voxel.
     double worst = 0;
     for (const Vec3& p : skin.positions) worst = std::max(worst, std::abs(phantom->skin_distance(p)));
-    EXPECT_LT(worst, 2.0) << name;
+    EXPECT_LT(worst, 0.5 * 5.0) << name;
   }
 }
 
