@@ -94,6 +94,19 @@ SliceImage read_slice(const std::filesystem::path& file) {
   const unsigned long length = image.GetBufferLength();
   require_input(length == bytes, src, "(7FE0,0010) PixelData",
                 "expected " + std::to_string(bytes) + " bytes of pixel data, found " + std::to_string(length));
+  // Check the declared size against the pixel data really present before allocating: native pixel data must hold
+  // every byte; compressed (encapsulated) data is bounded by a generous ratio to the file's size.
+  if (const gdcm::ByteValue* bv = image.GetDataElement().GetByteValue(); bv != nullptr) {
+    require_input(
+        bv->GetLength() >= bytes, src, "(7FE0,0010) PixelData",
+        "expected " + std::to_string(bytes) + " bytes of pixel data, found " + std::to_string(bv->GetLength()));
+  } else {
+    std::error_code ec;
+    const std::uint64_t file_size = std::filesystem::file_size(file, ec);
+    require_input(
+        !ec && bytes <= file_size * 2000 + (std::uint64_t{1} << 20), src, "(7FE0,0010) PixelData",
+        std::to_string(bytes) + " bytes of pixels cannot come from a file of " + std::to_string(file_size) + " bytes");
+  }
   std::vector<char> buffer(length);
   if (!image.GetBuffer(buffer.data())) throw InputError(src, "(7FE0,0010) PixelData", "cannot decode the pixel data");
   s.values.resize(count);

@@ -34,7 +34,13 @@ TriMesh extract_iso_surface(const ScalarGrid& input, double iso_value, const Iso
   for (std::size_t i = 0; i < shifted.size(); ++i) {
     const float v = grid.values[i];
     const float f = static_cast<float>(iso_value - double(v));
-    shifted[i] = std::isnan(v) ? background : (f == 0.0f ? nudge : f);
+    if (std::isnan(v)) {
+      shifted[i] = background;  // missing samples are outside
+    } else if (!std::isfinite(f)) {
+      shifted[i] = f > 0.0f ? background : -background;  // +-inf samples: clamp so interpolation stays finite
+    } else {
+      shifted[i] = f == 0.0f ? nudge : f;
+    }
   }
   const openvdb::CoordBBox box(openvdb::Coord(0, 0, 0), openvdb::Coord(grid.nx - 1, grid.ny - 1, grid.nz - 1));
   openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, shifted.data());

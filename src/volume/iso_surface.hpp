@@ -20,8 +20,8 @@ struct IsoSurfaceOptions {
 /// padded with a background below the iso-value, so objects touching the volume's border are closed there.
 /// Uses OpenVDB's tools::volumeToMesh (uniform, adaptivity 0) on a grid built from the dense samples, its quads split
 /// along the shorter diagonal. Samples exactly at the iso-value count as outside (nudged by 1e-4 of the value range),
-/// which keeps zero-area triangles out of integer CT data. Vertex normals are filled. Throws InputError for an invalid grid or non-finite
-/// iso-value; returns an empty mesh when no sample is above the iso-value.
+/// which keeps zero-area triangles out of integer CT data. Vertex normals are filled. Throws InputError for an invalid
+/// grid or non-finite iso-value; returns an empty mesh when no sample is above the iso-value.
 TriMesh extract_iso_surface(const ScalarGrid& grid, double iso_value, const IsoSurfaceOptions& options = {});
 
 }  // namespace forensim

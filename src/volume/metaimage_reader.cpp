@@ -177,7 +177,11 @@ ScalarGrid read_metaimage(const std::filesystem::path& path) {
     const std::uint64_t size = std::filesystem::file_size(path);
     const std::string rest =
         read_file(path, std::size_t{64} << 20).substr(std::min<std::uint64_t>(header.data_offset, size));
-    for (const std::string& name : split_words(rest)) files.push_back(folder / name);
+    for (const std::string& name : split_words(rest)) {
+      files.push_back(folder / name);
+      require_input(std::int64_t(files.size()) <= k_max_data_files, src, data_field.location(),
+                    "LIST names more than " + std::to_string(k_max_data_files) + " files");
+    }
     multi = true;
   } else if (words.size() >= 4 && words[0].find('%') != std::string::npos) {
     require_input(words.size() <= 5, src, data_field.location(), "expected '<pattern> <min> <max> <step> [<subdim>]'");
@@ -189,8 +193,9 @@ ScalarGrid read_metaimage(const std::filesystem::path& path) {
                       std::abs(hi) < (std::int64_t{1} << 40),
                   src, data_field.location(), "file numbers do not form a range");
     const std::int64_t n_files = (hi - lo) / step + 1;
-    require_input(std::uint64_t(n_files) <= count, src, data_field.location(),
-                  std::to_string(n_files) + " data files for " + std::to_string(count) + " voxels");
+    require_input(std::uint64_t(n_files) <= count && n_files <= k_max_data_files, src, data_field.location(),
+                  std::to_string(n_files) + " data files for " + std::to_string(count) +
+                      " voxels (at most one file per voxel and " + std::to_string(k_max_data_files) + " files)");
     for (std::int64_t i = 0; i < n_files; ++i) {
       files.push_back(folder / format_file_pattern(words[0], lo + i * step, src + " " + data_field.location()));
     }

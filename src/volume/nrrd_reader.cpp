@@ -302,6 +302,8 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
     if (words[0] == "LIST") {
       require_input(words.size() <= 2, src, data_field->location(), "expected 'LIST [<subdim>]'");
       if (words.size() == 2) read_subdim(words[1]);
+      require_input(std::int64_t(list_files.size()) <= k_max_data_files, src, data_field->location(),
+                    "LIST names more than " + std::to_string(k_max_data_files) + " files");
       for (const std::string& name : list_files) files.push_back(folder / name);
       multi = true;
     } else if (words.size() >= 4 && words[0].find('%') != std::string::npos) {
@@ -317,8 +319,9 @@ ScalarGrid read_nrrd(const std::filesystem::path& path) {
           src, data_field->location(),
           "data file numbers " + words[1] + " to " + words[2] + " in steps of " + words[3] + " do not form a range");
       const std::int64_t n_files = (hi - lo) / step + 1;
-      require_input(std::uint64_t(n_files) <= count, src, data_field->location(),
-                    std::to_string(n_files) + " data files for " + std::to_string(count) + " voxels");
+      require_input(std::uint64_t(n_files) <= count && n_files <= k_max_data_files, src, data_field->location(),
+                    std::to_string(n_files) + " data files for " + std::to_string(count) +
+                        " voxels (at most one file per voxel and " + std::to_string(k_max_data_files) + " files)");
       for (std::int64_t i = 0; i < n_files; ++i) {
         files.push_back(folder / format_file_pattern(words[0], lo + i * step, src + " " + data_field->location()));
       }

@@ -12,6 +12,9 @@
 
 namespace forensim {
 
+/// Most data files one volume header may name (a numbered pattern or a LIST); far above any real slice count.
+inline constexpr std::int64_t k_max_data_files = std::int64_t{1} << 16;
+
 /// Element type of stored voxels.
 enum class VoxelType { int8, uint8, int16, uint16, int32, uint32, int64, uint64, float32, float64 };
 

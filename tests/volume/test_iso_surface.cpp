@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "core/error.hpp"
 #include "geometry/bounding_box.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
@@ -163,4 +165,15 @@ TEST(IsoSurface, HeadCtSkinAndBoneAreClosedAndHeadSized) {
     EXPECT_GT(mesh.triangle_count(), 20000u);
     EXPECT_LT(mesh.triangle_count(), 200000u);
   }
+}
+
+TEST(IsoSurface, NonFiniteSamplesGiveFiniteClosedSurface) {
+  ScalarGrid g = sphere_field(20, 1.0, Vec3(4.5, 12.5, 19.5), 5.0);
+  g.at(10, 10, 10) = std::numeric_limits<float>::infinity();  // inside
+  g.at(1, 1, 1) = -std::numeric_limits<float>::infinity();    // outside
+  g.at(2, 2, 2) = std::numeric_limits<float>::quiet_NaN();    // missing: outside
+  const TriMesh mesh = extract_iso_surface(g, 0.0);
+  expect_closed_oriented(mesh);
+  for (const Vec3& p : mesh.positions) ASSERT_TRUE(p.allFinite());
+  EXPECT_THROW(extract_iso_surface(g, std::nan("")), InputError);
 }
