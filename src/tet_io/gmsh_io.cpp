@@ -573,10 +573,13 @@ void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool bin
   for (std::size_t t = 0; t < tet_count; ++t) labels.push_back(mesh.label(t));
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  if (labels.empty() && node_count > 0) labels.push_back(tissue_flesh);  // nodes need a volume entity
   std::map<int, int> entity_of_label;
   for (std::size_t k = 0; k < labels.size(); ++k) entity_of_label[labels[k]] = static_cast<int>(k + 1);
   std::vector<std::vector<std::size_t>> tets_of_entity(labels.size());
   for (std::size_t t = 0; t < tet_count; ++t) tets_of_entity[entity_of_label[mesh.label(t)] - 1].push_back(t);
+  std::size_t element_blocks = 0;
+  for (const auto& block : tets_of_entity) element_blocks += block.empty() ? 0 : 1;
 
   std::string out;
   out.reserve(binary ? 64 + node_count * 32 + tet_count * 40 : 64 + node_count * 60 + tet_count * 48);
@@ -603,6 +606,12 @@ void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool bin
       for (Index v : mesh.tets[t]) {
         lo = lo.cwiseMin(mesh.positions[v]);
         hi = hi.cwiseMax(mesh.positions[v]);
+      }
+    }
+    if (tets_of_entity[k].empty()) {  // the entity that only holds the nodes of a mesh without tets
+      for (const Vec3& p : mesh.positions) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
       }
     }
     const int tag = static_cast<int>(k + 1);
@@ -668,16 +677,17 @@ void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool bin
 
   // One element block per label; element tags keep the tet order (t + 1).
   if (binary) {
-    append_binary<std::uint64_t>(out, labels.size());
+    append_binary<std::uint64_t>(out, element_blocks);
     append_binary<std::uint64_t>(out, tet_count);
     append_binary<std::uint64_t>(out, tet_count > 0 ? 1 : 0);
     append_binary<std::uint64_t>(out, tet_count);
   } else {
-    out += std::to_string(labels.size()) + " " + std::to_string(tet_count) + " " + (tet_count > 0 ? "1 " : "0 ") +
+    out += std::to_string(element_blocks) + " " + std::to_string(tet_count) + " " + (tet_count > 0 ? "1 " : "0 ") +
            std::to_string(tet_count) + "\n";
   }
   for (std::size_t k = 0; k < labels.size(); ++k) {
     const auto& block = tets_of_entity[k];
+    if (block.empty()) continue;
     if (binary) {
       append_binary<std::int32_t>(out, 3);
       append_binary<std::int32_t>(out, static_cast<std::int32_t>(k + 1));

@@ -110,12 +110,13 @@ std::int64_t read_node_file(std::string_view bytes, const std::string& source, T
   const std::int64_t attribute_count = header.size() > 2 ? in.integer(header[2], "attribute count", 0, 1000) : 0;
   const std::int64_t markers = header.size() > 3 ? in.integer(header[3], "boundary marker flag", 0, 1) : 0;
   (void)dimension;
-  if (static_cast<std::uint64_t>(count) > in.remaining() / 8) {
-    in.fail("node count " + std::to_string(count) + " cannot fit in the remaining " + std::to_string(in.remaining()) +
-            " bytes");
+  const std::size_t columns = 4 + static_cast<std::size_t>(attribute_count + markers);
+  // Every value takes at least 2 bytes ("0 "), so the declared table must fit in what is left.
+  if (static_cast<std::uint64_t>(count) > in.remaining() / (2 * columns)) {
+    in.fail("node count " + std::to_string(count) + " with " + std::to_string(columns) +
+            " values each cannot fit in the remaining " + std::to_string(in.remaining()) + " bytes");
   }
   const auto names = in.names(static_cast<std::size_t>(attribute_count));
-  const std::size_t columns = 4 + static_cast<std::size_t>(attribute_count + markers);
   mesh.positions.reserve(static_cast<std::size_t>(count));
   std::vector<std::vector<double>> attributes(static_cast<std::size_t>(attribute_count));
   for (auto& a : attributes) a.reserve(static_cast<std::size_t>(count));
@@ -154,12 +155,12 @@ void read_ele_file(std::string_view bytes, const std::string& source, std::int64
   const std::int64_t corners = in.integer(header[1], "nodes per tet", 4, 10);
   if (corners != 4 && corners != 10) in.fail("nodes per tet must be 4 or 10, not " + std::to_string(corners));
   const std::int64_t attribute_count = header.size() > 2 ? in.integer(header[2], "attribute count", 0, 1000) : 0;
-  if (static_cast<std::uint64_t>(count) > in.remaining() / 10) {
-    in.fail("tet count " + std::to_string(count) + " cannot fit in the remaining " + std::to_string(in.remaining()) +
-            " bytes");
+  const std::size_t columns = 1 + static_cast<std::size_t>(corners + attribute_count);
+  if (static_cast<std::uint64_t>(count) > in.remaining() / (2 * columns)) {
+    in.fail("tet count " + std::to_string(count) + " with " + std::to_string(columns) +
+            " values each cannot fit in the remaining " + std::to_string(in.remaining()) + " bytes");
   }
   const auto names = attribute_count > 1 ? in.names(static_cast<std::size_t>(attribute_count - 1)) : std::nullopt;
-  const std::size_t columns = 1 + static_cast<std::size_t>(corners + attribute_count);
   const std::int64_t node_count = static_cast<std::int64_t>(mesh.positions.size());
   mesh.tets.reserve(static_cast<std::size_t>(count));
   if (attribute_count > 0) mesh.tet_labels.reserve(static_cast<std::size_t>(count));

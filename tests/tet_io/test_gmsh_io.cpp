@@ -227,3 +227,19 @@ TEST(GmshIo, ErrorsNameFileAndLine) {
 TEST(GmshIo, MissingFileIsIoError) {
   EXPECT_THROW(read_gmsh(test::scratch_dir("msh") / "absent.msh"), IoError);
 }
+
+TEST(GmshIo, NodesWithoutTetsRoundTrip) {
+  TetMesh mesh = sample_tet_mesh(1, 1, 1);
+  mesh.tets.clear();
+  mesh.tet_labels.clear();
+  mesh.tet_fields = {};
+  for (bool binary : {false, true}) {
+    const auto path = test::scratch_dir("msh") / "cloud.msh";
+    write_gmsh(path, mesh, binary);
+    test::expect_same_geometry(mesh, read_gmsh(path));
+  }
+  TetMesh empty;
+  const auto path = test::scratch_dir("msh") / "empty.msh";
+  write_gmsh(path, empty);
+  EXPECT_EQ(read_gmsh(path).vertex_count(), 0u);
+}
