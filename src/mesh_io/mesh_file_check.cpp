@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -428,7 +429,7 @@ void check_gltf_json(const std::filesystem::path& path, std::string_view json_te
       buffer_sizes.push_back(declared);
     }
   }
-  std::vector<std::uint64_t> view_sizes;
+  std::vector<std::uint64_t> view_sizes, view_strides;
   if (const auto it = doc.find("bufferViews"); it != doc.end() && it->is_array()) {
     for (std::size_t v = 0; v < it->size(); ++v) {
       const nlohmann::json& view = (*it)[v];
@@ -441,6 +442,7 @@ void check_gltf_json(const std::filesystem::path& path, std::string_view json_te
       require_input(offset <= buffer_sizes[buffer] && length <= buffer_sizes[buffer] - offset, source, location,
                     "extends past the end of its buffer");
       view_sizes.push_back(length);
+      view_strides.push_back(json_uint(view, "byteStride", 0, source, location));
     }
   }
   if (const auto it = doc.find("accessors"); it != doc.end() && it->is_array()) {
@@ -458,11 +460,45 @@ void check_gltf_json(const std::filesystem::path& path, std::string_view json_te
       const int element_size =
           gltf_component_count(type->get<std::string>()) * gltf_component_size(component->get<int>());
       require_input(element_size > 0, source, location, "has an unknown type or component type");
-      if (accessor.find("bufferView") == accessor.end()) continue;  // all zeros (or sparse): nothing to read
+      // Accessors without a view are all zeros (plus sparse values) that the reader allocates; bound them by
+      // the data really present, generously (a zero morph target of a large mesh is legitimate).
+      const std::uint64_t total_bytes = std::accumulate(view_sizes.begin(), view_sizes.end(), std::uint64_t{0});
+      require_input(count * static_cast<std::uint64_t>(element_size) <= 64 * total_bytes + (std::uint64_t{1} << 20),
+                    source, location,
+                    "count " + std::to_string(count) + " is far larger than the file's data could describe");
+      if (const auto sparse = accessor.find("sparse"); sparse != accessor.end()) {
+        require_input(sparse->is_object(), source, location + ".sparse", "is not an object");
+        const std::uint64_t sparse_count = json_uint(*sparse, "count", 0, source, location + ".sparse");
+        require_input(sparse_count <= count, source, location + ".sparse", "count exceeds the accessor's count");
+        for (const char* part : {"indices", "values"}) {
+          const auto it_part = sparse->find(part);
+          require_input(it_part != sparse->end() && it_part->is_object(), source, location + ".sparse",
+                        std::string("has no '") + part + "'");
+          const std::uint64_t part_view = json_uint(*it_part, "bufferView", view_sizes.size(), source, location);
+          const std::uint64_t part_offset = json_uint(*it_part, "byteOffset", 0, source, location);
+          require_input(part_view < view_sizes.size(), source, location + ".sparse." + part,
+                        "refers to a missing buffer view");
+          std::uint64_t part_size = static_cast<std::uint64_t>(element_size);
+          if (std::string_view(part) == "indices") {
+            const auto type_it = it_part->find("componentType");
+            require_input(type_it != it_part->end() && type_it->is_number_integer(), source,
+                          location + ".sparse.indices", "has no componentType");
+            part_size = static_cast<std::uint64_t>(gltf_component_size(type_it->get<int>()));
+            require_input(part_size > 0, source, location + ".sparse.indices", "has an unknown componentType");
+          }
+          require_input(
+              part_offset <= view_sizes[part_view] && sparse_count * part_size <= view_sizes[part_view] - part_offset,
+              source, location + ".sparse." + part, "extends past the end of its buffer view");
+        }
+      }
+      if (accessor.find("bufferView") == accessor.end()) continue;
       const std::uint64_t view = json_uint(accessor, "bufferView", 0, source, location);
       const std::uint64_t offset = json_uint(accessor, "byteOffset", 0, source, location);
       require_input(view < view_sizes.size(), source, location, "refers to a missing buffer view");
-      const std::uint64_t needed = count == 0 ? 0 : offset + count * static_cast<std::uint64_t>(element_size);
+      const std::uint64_t stride =
+          std::max<std::uint64_t>(view_strides[view], static_cast<std::uint64_t>(element_size));
+      const std::uint64_t needed =
+          count == 0 ? 0 : offset + (count - 1) * stride + static_cast<std::uint64_t>(element_size);
       require_input(needed <= view_sizes[view], source, location,
                     std::to_string(count) + " elements need " + std::to_string(needed) + " bytes but its view has " +
                         std::to_string(view_sizes[view]));

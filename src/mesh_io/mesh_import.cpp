@@ -298,7 +298,8 @@ ImportedMesh import_mesh_with_textures(const std::filesystem::path& path, const 
   if (!counts.empty()) {
     const auto best = static_cast<unsigned>(std::max_element(counts.begin(), counts.end()) - counts.begin());
     if (best < scene->mNumMaterials && scene->mMaterials[best] != nullptr) {
-      mesh.material = material_of(*scene, *scene->mMaterials[best], path.parent_path(), result.textures);
+      mesh.material =
+          material_of(*scene, *scene->mMaterials[best], std::filesystem::absolute(path).parent_path(), result.textures);
     }
   }
 
