@@ -37,7 +37,7 @@ std::size_t remove_index_degenerate(std::vector<Polygon>& polygons) {
   return before - polygons.size();
 }
 
-/// Corner positions of every face, to count faces whose orientation an operation reversed.
+/// Corner positions of every face, to find faces whose orientation an operation reversed.
 std::vector<std::array<Point, 3>> face_corners(const SurfaceMesh& mesh) {
   std::vector<std::array<Point, 3>> corners(mesh.num_faces());
   for (const SurfaceMesh::Face_index f : mesh.faces()) {
@@ -50,8 +50,8 @@ std::vector<std::array<Point, 3>> face_corners(const SurfaceMesh& mesh) {
   return corners;
 }
 
-std::size_t count_reversed(const SurfaceMesh& mesh, const std::vector<std::array<Point, 3>>& before) {
-  std::size_t reversed = 0;
+void toggle_reversed(const SurfaceMesh& mesh, const std::vector<std::array<Point, 3>>& before,
+                     SurfaceMesh::Property_map<SurfaceMesh::Face_index, bool>& flipped) {
   const auto after = face_corners(mesh);
   for (const SurfaceMesh::Face_index f : mesh.faces()) {
     const auto& a = before[f.idx()];
@@ -59,9 +59,8 @@ std::size_t count_reversed(const SurfaceMesh& mesh, const std::vector<std::array
     // Same cyclic order means same orientation.
     const bool same =
         (a[0] == b[0] && a[1] == b[1]) || (a[0] == b[1] && a[1] == b[2]) || (a[0] == b[2] && a[1] == b[0]);
-    if (!same) ++reversed;
+    if (!same) flipped[f] = !flipped[f];
   }
-  return reversed;
 }
 
 }  // namespace
@@ -114,6 +113,7 @@ RepairReport repair_mesh(TriMesh& mesh, const RepairOptions& options) {
   report.degenerate_triangles_removed += remove_index_degenerate(polygons);
   report.duplicate_triangles_removed += PMP::merge_duplicate_polygons_in_polygon_soup(points, polygons);
   report.isolated_vertices_removed += PMP::remove_isolated_points_in_polygon_soup(points, polygons);
+  std::vector<bool> soup_flipped;
   {
     const std::size_t point_count = points.size();
     const std::vector<Polygon> original = polygons;
@@ -122,16 +122,20 @@ RepairReport repair_mesh(TriMesh& mesh, const RepairOptions& options) {
                              std::to_string(points.size() - point_count) + " duplicated vertices");
     }
     report.vertices_split_nonmanifold += points.size() - point_count;
+    soup_flipped.resize(polygons.size());
     for (std::size_t i = 0; i < polygons.size(); ++i) {
-      if (points[polygons[i][0]] != points[original[i][0]] || points[polygons[i][1]] != points[original[i][1]]) {
-        ++report.triangles_flipped;
-      }
+      soup_flipped[i] =
+          points[polygons[i][0]] != points[original[i][0]] || points[polygons[i][1]] != points[original[i][1]];
     }
   }
   SurfaceMesh sm;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
   points.clear();
   polygons.clear();
+  // Net orientation change of every face against the input (faces are created in polygon order; the map
+  // follows them through garbage collection; faces added later start unflipped).
+  auto flipped = sm.add_property_map<SurfaceMesh::Face_index, bool>("f:forensim_flipped", false).first;
+  for (const SurfaceMesh::Face_index f : sm.faces()) flipped[f] = soup_flipped[f.idx()];
 
   // Halfedge mesh stage.
   report.edges_stitched += PMP::stitch_borders(sm);
@@ -163,7 +167,7 @@ RepairReport repair_mesh(TriMesh& mesh, const RepairOptions& options) {
   if (options.orient_outward && CGAL::is_closed(sm) && sm.number_of_faces() > 0) {
     const auto corners = face_corners(sm);
     PMP::orient_to_bound_a_volume(sm);
-    report.triangles_flipped += count_reversed(sm, corners);
+    toggle_reversed(sm, corners, flipped);
   } else if (options.orient_outward && sm.number_of_faces() > 0) {
     report.notes.push_back("the mesh is open, so it was oriented consistently but not necessarily outward");
   }
@@ -174,6 +178,8 @@ RepairReport repair_mesh(TriMesh& mesh, const RepairOptions& options) {
   }
   report.isolated_vertices_removed += PMP::remove_isolated_vertices(sm);
   sm.collect_garbage();
+
+  for (const SurfaceMesh::Face_index f : sm.faces()) report.triangles_flipped += flipped[f] ? 1 : 0;
 
   TriMesh result = cgal::to_tri_mesh(sm);
   result.material = mesh.material;
