@@ -45,6 +45,16 @@ TEST(MeshImportUnits, ObjIsMillimetresUnlessToldOtherwise) {
   EXPECT_DOUBLE_EQ(mm_per_unit("M"), 1000.0);
 }
 
+TEST(MeshImportUnits, FbxUsesTheUnitScaleFactorAssimpReports) {
+  // ASCII FBX written by Assimp's exporter: a tetrahedron 19 units tall, UnitScaleFactor 1 (cm) / 100 (m).
+  const TriMesh cm = import_mesh(corpus("tetra_19_units_cm.fbx"));
+  EXPECT_EQ(cm.triangle_count(), 4u);
+  EXPECT_EQ(cm.vertex_count(), 4u);
+  EXPECT_NEAR(bounding_box(cm.positions).size()[1], 190.0, 1e-4);
+  EXPECT_NEAR(bounding_box(import_mesh(corpus("tetra_19_units_m.fbx")).positions).size()[1], 19000.0, 1e-2);
+  EXPECT_NEAR(bounding_box(import_mesh(corpus("tetra_19_units_m.fbx"), {"mm", 0.0}).positions).size()[1], 19.0, 1e-5);
+}
+
 TEST(MeshImport, ResultIsWeldedAndClosed) {
   const auto dir = test::scratch_dir("welded");
   write_mesh(dir / "box.ply", test::make_uv_box(Vec3(0, 0, 0), Vec3(100, 100, 100), 3));
