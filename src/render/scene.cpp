@@ -30,6 +30,7 @@ BoundingBox Scene::bounds() const {
 
 void Scene::frame(ViewName view, double aspect, const FramingOptions& options) {
   camera = frame_view(bounds(), view, aspect, options);
+  environment.up = options.axes.up;
 }
 
 }  // namespace forensim

@@ -67,7 +67,8 @@ struct Scene {
   RenderObject& add(const TriMesh& mesh, const SurfaceMaterial& material, const std::string& name = "");
   /// World-space bounding box of all objects (after their transforms; ignoring cut planes).
   BoundingBox bounds() const;
-  /// Points the camera at all objects from the named view for an image of the given aspect (width/height).
+  /// Points the camera at all objects from the named view for an image of the given aspect (width/height),
+  /// and turns the environment's up to the subject's up.
   void frame(ViewName view, double aspect, const FramingOptions& options = {});
 };
 

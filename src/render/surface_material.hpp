@@ -46,7 +46,7 @@ struct SurfaceMaterial {
 
   double opacity = 1.0;          ///< < 1: semi-transparent overlay; only the faces towards the viewer are drawn
   bool double_sided = true;      ///< shade back faces (open scans) instead of leaving them black
-  double crease_angle_deg = 45;  ///< sharper edges than this are shaded flat (boxes, cut faces)
+  double crease_angle_deg = 30;  ///< corners whose vertex normal is further than this from the face are flat
   /// Cut-away cross-section: colour of the cap drawn where the cut plane passes through the (closed)
   /// object; negative components mean "base colour darkened".
   Vec3f cap_colour = Vec3f(-1, -1, -1);

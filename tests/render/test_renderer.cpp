@@ -166,3 +166,95 @@ TEST(Renderer, DepthMatchesAnalyticSphere) {
   EXPECT_NEAR(depth.at(16, 16), 350.0, 0.2);
   EXPECT_TRUE(std::isinf(depth.at(0, 0)));
 }
+
+namespace {
+
+// A large square facing -Y (towards a camera on the -Y side) at y = 0.
+TriMesh wall(double half) {
+  TriMesh quad;
+  quad.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quad.triangle_uvs = quad.triangles;
+  quad.normals.assign(4, Vec3(0, -1, 0));
+  return quad;
+}
+
+float centre_linear(const Scene& scene, int channel = 0) {
+  RenderSettings settings = small_settings(9, 64);
+  return Renderer(scene).render_linear(scene.camera, settings).at(4, 4, channel);
+}
+
+}  // namespace
+
+TEST(Renderer, DirectionalLightOfIntensityOneShowsTheAlbedo) {
+  Scene scene = plain_scene();
+  scene.add(wall(100), matte(Vec3f(0.5f, 0.5f, 0.5f)));
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 20);
+  scene.lights.push_back(Light::directional(Vec3(0, -1, 0), 1.0, 0.0));
+  EXPECT_NEAR(centre_linear(scene), 0.5f, 1e-3f);
+  // At 60 degrees incidence: cos = 0.5.
+  scene.lights[0].direction = Vec3(0, -0.5, std::sqrt(0.75));
+  EXPECT_NEAR(centre_linear(scene), 0.25f, 1e-3f);
+}
+
+TEST(Renderer, SphereLightFollowsTheInverseSquareLaw) {
+  // A sphere of radiance L and radius r at distance d gives irradiance pi L r^2 / d^2 (normal incidence),
+  // so a Lambertian surface of albedo a shows radiance a L r^2 / d^2.
+  Scene scene = plain_scene();
+  scene.add(wall(400), matte(Vec3f(0.5f, 0.5f, 0.5f)));
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 2);
+  scene.lights.push_back(Light::sphere(Vec3(0, -50, 0), 5.0, 100.0));
+  EXPECT_NEAR(centre_linear(scene), 0.5f * 100.0f * 25.0f / 2500.0f, 0.01f);
+  scene.lights[0].position = Vec3(0, -100, 0);
+  EXPECT_NEAR(centre_linear(scene), 0.5f * 100.0f * 25.0f / 10000.0f, 0.003f);
+}
+
+TEST(Renderer, RectangleLightMatchesSmallSourceLimit) {
+  // A small square (side s) at distance d facing the surface: E ~ L s^2 / d^2.
+  Scene scene = plain_scene();
+  scene.add(wall(400), matte(Vec3f(1.0f, 1.0f, 1.0f)));
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 2);
+  scene.lights.push_back(Light::rectangle(Vec3(-2, -100, -2), Vec3(0, 0, 4), Vec3(4, 0, 0), 1000.0));
+  const float expected = static_cast<float>(1000.0 * 16.0 / 10000.0 / M_PI);
+  EXPECT_NEAR(centre_linear(scene), expected, 0.01f * expected);
+  // Emitting away from the surface: dark.
+  std::swap(scene.lights[0].edge_u, scene.lights[0].edge_v);
+  EXPECT_EQ(centre_linear(scene), 0.0f);
+}
+
+TEST(Renderer, NormalMapTiltsTheShading) {
+  Scene scene = plain_scene();
+  scene.add(wall(100), matte(Vec3f(0.5f, 0.5f, 0.5f)));
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 20);
+  scene.lights.push_back(Light::directional(Vec3(0, -1, 0), 1.0, 0.0));
+  const float flat = centre_linear(scene);
+  // Tangent-space normal tilted 60 degrees along +u: n = (sin 60, 0, cos 60), stored as (n + 1) / 2.
+  auto map = std::make_shared<Image>(4, 4, 3, 0.5f, PixelEncoding::data);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) map->set_rgba(x, y, Vec4f(0.5f + 0.5f * 0.8660254f, 0.5f, 0.75f, 1.0f));
+  scene.objects[0].material.normal_map = map;
+  EXPECT_NEAR(centre_linear(scene), 0.5f * flat, 2e-3f);
+}
+
+TEST(Renderer, SkinTerminatorIsRedderThanAPlainSurface) {
+  const auto terminator_ratio = [](const SurfaceMaterial& material) {
+    Scene scene = plain_scene();
+    scene.add(make_icosphere(Vec3::Zero(), 50, 4), material);
+    scene.camera = Camera::orthographic(Vec3(0, -400, 0), Vec3::Zero(), Vec3::UnitZ(), 110);
+    scene.lights.push_back(Light::directional(Vec3(-1, 0, 0), 1.0, 0.0));
+    RenderSettings settings = small_settings(64, 4);
+    const Image image = Renderer(scene).render_linear(scene.camera, settings);
+    // Pixels just past the terminator (the sphere's centre column and a little right of it).
+    double red = 0, green = 0;
+    for (int y = 20; y < 44; ++y)
+      for (int x = 32; x < 38; ++x) {
+        red += image.at(x, y, 0);
+        green += image.at(x, y, 1);
+      }
+    return red / std::max(green, 1e-9);
+  };
+  SurfaceMaterial skin = SurfaceMaterial::skin(Vec3f(0.5f, 0.5f, 0.5f));
+  skin.specular = 0;
+  EXPECT_GT(terminator_ratio(skin), 1.3);
+}
