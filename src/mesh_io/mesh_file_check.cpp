@@ -429,6 +429,36 @@ void check_gltf_json(const std::filesystem::path& path, std::string_view json_te
       buffer_sizes.push_back(declared);
     }
   }
+  // Node hierarchy: a forest of bounded depth (readers walk it recursively; a cycle or a chain of a million
+  // nodes would overflow their stack).
+  if (const auto it = doc.find("nodes"); it != doc.end() && it->is_array()) {
+    constexpr std::size_t max_depth = 1024;
+    const std::size_t count = it->size();
+    std::vector<std::int64_t> parent(count, -1);
+    for (std::size_t n = 0; n < count; ++n) {
+      const nlohmann::json& node = (*it)[n];
+      const std::string location = "nodes[" + std::to_string(n) + "]";
+      require_input(node.is_object(), source, location, "is not an object");
+      const auto children = node.find("children");
+      if (children == node.end()) continue;
+      require_input(children->is_array(), source, location, "'children' is not an array");
+      for (const nlohmann::json& child : *children) {
+        require_input(child.is_number_unsigned() && child.get<std::uint64_t>() < count, source, location,
+                      "child index is not a valid node index");
+        const auto c = child.get<std::size_t>();
+        require_input(c != n && parent[c] < 0, source, location,
+                      "node " + std::to_string(c) + " has two parents or is its own child");
+        parent[c] = static_cast<std::int64_t>(n);
+      }
+    }
+    for (std::size_t n = 0; n < count; ++n) {
+      std::size_t depth = 0;
+      for (std::int64_t p = parent[n]; p >= 0; p = parent[static_cast<std::size_t>(p)]) {
+        require_input(++depth <= max_depth, source, "nodes[" + std::to_string(n) + "]",
+                      "node hierarchy is cyclic or deeper than " + std::to_string(max_depth) + " levels");
+      }
+    }
+  }
   std::vector<std::uint64_t> view_sizes, view_strides;
   if (const auto it = doc.find("bufferViews"); it != doc.end() && it->is_array()) {
     for (std::size_t v = 0; v < it->size(); ++v) {

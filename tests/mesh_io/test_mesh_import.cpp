@@ -96,7 +96,8 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadMeshFile,
                                            "vertex_count_exceeds_size.ply", "huge_face_list.ply", "wrong_count.stl",
                                            "nan_coordinate.obj", "face_index_out_of_range.obj",
                                            "broken_chunk_length.glb", "broken_json_length.glb",
-                                           "huge_accessor_count.gltf", "huge_viewless_accessor.gltf"),
+                                           "huge_accessor_count.gltf", "huge_viewless_accessor.gltf",
+                                           "cyclic_nodes.gltf"),
                          [](const ::testing::TestParamInfo<const char*>& param) {
                            std::string name = param.param;
                            for (char& c : name) {
