@@ -141,3 +141,27 @@ TEST(RenderGallery, TimelineSheetAndTurntable) {
   const Image quick = render_mesh(limb(200, 40, 4), settings, "three_quarter");
   write_png(gallery_dir() / "quick_look.png", quick);
 }
+
+TEST(RenderGallery, HeadLikeSkinWithSkullCutAway) {
+  TriMesh skin = make_icosphere(Vec3::Zero(), 90.0, 5);
+  for (Vec3& p : skin.positions) {
+    const Vec3 n = p.normalized();
+    p *= 1.0 + 0.04 * std::sin(7 * n[0]) * std::sin(5 * n[1]) * std::cos(6 * n[2]) + 0.2 * n[2] * n[2];
+  }
+  compute_normals(skin);
+  Scene scene;
+  scene.add(make_icosphere(Vec3::Zero(), 70.0, 4), SurfaceMaterial::bone(), "skull");
+  scene.add(std::make_shared<const TriMesh>(std::move(skin)), SurfaceMaterial::skin(), "skin");
+  scene.cutaway = CutPlane{Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  RenderSettings settings;
+  settings.width = 600;
+  settings.height = 600;
+  settings.samples_per_pixel = 16;
+  scene.frame(ViewName::three_quarter, 1.0);
+  const Image picture = render(scene, settings);
+  write_png(gallery_dir() / "head_cutaway.png", picture);
+  scene.cutaway.reset();
+  scene.objects[1].material.opacity = 0.4;
+  write_png(gallery_dir() / "head_transparent.png", render(scene, settings));
+  EXPECT_GT(spread(picture), 0.3);
+}

@@ -258,3 +258,17 @@ TEST(Renderer, SkinTerminatorIsRedderThanAPlainSurface) {
   skin.specular = 0;
   EXPECT_GT(terminator_ratio(skin), 1.3);
 }
+
+TEST(Renderer, ObjectTransformMovesTheObject) {
+  Scene scene = plain_scene();
+  scene.lights.push_back(Light::directional(Vec3(0, -1, 0), 1.0, 0.0));
+  scene.add(make_icosphere(Vec3::Zero(), 10, 2), matte(Vec3f(0.8f, 0.8f, 0.8f)));
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 100);
+  scene.objects[0].transform = Eigen::Translation3d(30, 0, 0) * Eigen::Scaling(1.5);
+  const Image image = render(scene, small_settings(50, 1));
+  // The sphere (radius 15 after scaling) is centred at x = 30 mm, i.e. pixel 40 of 50.
+  EXPECT_GT(image.at(40, 25, 0), 0.3f);
+  EXPECT_GT(image.at(40 - 6, 25, 0), 0.3f);
+  EXPECT_LT(image.at(25, 25, 0), 0.01f);
+  EXPECT_LT(image.at(40 - 9, 25, 0), 0.01f);
+}
