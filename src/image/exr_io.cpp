@@ -8,7 +8,10 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <exception>
+#include <fstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -17,11 +20,73 @@
 #include "core/error.hpp"
 
 namespace forensim {
+namespace {
+
+std::int32_t read_int32(const std::string& bytes, std::size_t at) {
+  const auto b = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + k])); };
+  return static_cast<std::int32_t>(b(0) | (b(1) << 8) | (b(2) << 16) | (b(3) << 24));
+}
+
+// Walks the first header's attribute list (name, type, size, value) up to its end and checks the
+// dataWindow before OpenEXR sizes any table from it, so a tiny hostile file cannot make it allocate
+// gigabytes. `head` is the start of the file.
+void check_exr_header(const std::string& head, std::uintmax_t file_size, const std::string& source) {
+  require_input(head.size() >= 8 && read_int32(head, 0) == 20000630, source, "byte 0",
+                "not an OpenEXR file (bad magic number)");
+  std::size_t at = 8;
+  const auto read_string = [&](const char* what) {
+    const std::size_t end = head.find('\0', at);
+    require_input(end != std::string::npos && end - at < 256, source, "byte " + std::to_string(at),
+                  std::string("unterminated or overlong attribute ") + what);
+    std::string text = head.substr(at, end - at);
+    at = end + 1;
+    return text;
+  };
+  for (int attributes = 0; attributes < 10000; ++attributes) {
+    const std::string name = read_string("name");
+    require_input(!name.empty(), source, "header", "no dataWindow attribute");
+    const std::string type = read_string("type");
+    require_input(at + 4 <= head.size(), source, "byte " + std::to_string(at), "truncated header");
+    const std::int32_t size = read_int32(head, at);
+    at += 4;
+    require_input(size >= 0 && static_cast<std::size_t>(size) <= head.size() - at, source, "byte " + std::to_string(at),
+                  "attribute '" + name + "' larger than the header");
+    if (name == "dataWindow") {
+      require_input(type == "box2i" && size == 16, source, "dataWindow", "must be a box2i");
+      const long long x0 = read_int32(head, at), y0 = read_int32(head, at + 4);
+      const long long x1 = read_int32(head, at + 8), y1 = read_int32(head, at + 12);
+      const long long w = x1 - x0 + 1, h = y1 - y0 + 1;
+      require_input(w > 0 && h > 0, source, "dataWindow", "empty data window");
+      require_input(
+          static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) <= max_image_pixels, source,
+          "dataWindow",
+          "data window " + std::to_string(w) + " x " + std::to_string(h) + " exceeds the limit of 2^28 pixels");
+      // Compressed EXR rarely beats ~1000:1 on a half channel; far larger claims are hostile.
+      require_input(static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) / 4096 <= file_size + 1024,
+                    source, "dataWindow",
+                    "data window " + std::to_string(w) + " x " + std::to_string(h) + " is impossible for a file of " +
+                        std::to_string(file_size) + " bytes");
+      return;
+    }
+    at += static_cast<std::size_t>(size);
+  }
+  throw InputError(source, "header", "too many attributes");
+}
+
+}  // namespace
 
 Image read_exr(const std::filesystem::path& path) {
   std::error_code ec;
   const auto file_size = std::filesystem::file_size(path, ec);
   if (ec) throw IoError(path.string(), "cannot read: " + ec.message());
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(path.string(), "cannot open");
+    std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(file_size, std::uintmax_t{1} << 22)), '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    if (!in) throw IoError(path.string(), "cannot read the header");
+    check_exr_header(head, file_size, path.string());
+  }
   try {
     Imf::InputFile file(path.string().c_str());
     const Imath::Box2i window = file.header().dataWindow();

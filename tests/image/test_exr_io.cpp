@@ -44,7 +44,8 @@ TEST(ExrIo, HalfRoundTripWithinHalfPrecision) {
 
 TEST(ExrIo, BadFilesThrowInputError) {
   const auto corpus = test::tests_dir() / "corpus/image";
-  for (const char* name : {"garbage.exr", "not_an_exr.exr", "empty.exr"})
+  for (const char* name : {"garbage.exr", "not_an_exr.exr", "empty.exr", "huge_data_window.exr",
+                           "large_window_tiny_file.exr", "attribute_overflow.exr"})
     EXPECT_THROW(read_exr(corpus / name), InputError) << name;
   EXPECT_THROW(read_exr(corpus / "no_such_file.exr"), IoError);
 }
