@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "geometry/primitives.hpp"
@@ -186,4 +187,25 @@ TEST(RayCaster, EmptyMeshAndBadRays) {
   TriMesh bad = make_icosphere(Vec3::Zero(), 1.0, 0);
   bad.triangles[3][1] = 999;
   EXPECT_THROW(RayCaster{bad}, InputError);
+}
+
+TEST(RayCaster, BatchIsIdenticalAtAnyThreadCount) {
+  const RayCaster caster(make_icosphere(Vec3::Zero(), 1.0, 3));
+  RandomStream rng(22, 0);
+  std::vector<Vec3> origins, directions;
+  for (int i = 0; i < 1000; ++i) {
+    origins.emplace_back(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+    directions.push_back(random_unit(rng));
+  }
+  const auto many = caster.intersect_batch(origins, directions);
+  set_thread_count(1);
+  const auto one = caster.intersect_batch(origins, directions);
+  set_thread_count(0);
+  for (std::size_t i = 0; i < origins.size(); ++i) {
+    ASSERT_EQ(many[i].has_value(), one[i].has_value());
+    if (many[i]) {
+      EXPECT_EQ(many[i]->triangle, one[i]->triangle);
+      EXPECT_EQ(many[i]->t, one[i]->t);
+    }
+  }
 }
