@@ -28,8 +28,30 @@ BoundingBox Scene::bounds() const {
   return box;
 }
 
+BoundingBox Scene::visible_bounds() const {
+  BoundingBox box;
+  for (const RenderObject& object : objects) {
+    if (!object.mesh) continue;
+    std::vector<CutPlane> planes;
+    if (cutaway && object.use_scene_cutaway) planes.push_back(*cutaway);
+    if (object.cutaway) planes.push_back(*object.cutaway);
+    for (const Vec3& local : object.mesh->positions) {
+      Vec3 p = object.transform * local;
+      for (const CutPlane& plane : planes) {
+        const double n = plane.normal.norm();
+        if (!(n > 0)) continue;
+        const double d = plane.signed_distance(p);
+        if (d > 0) p -= d * plane.normal / n;
+      }
+      box.extend(p);
+    }
+  }
+  return box;
+}
+
 void Scene::frame(ViewName view, double aspect, const FramingOptions& options) {
-  camera = frame_view(bounds(), view, aspect, options);
+  const BoundingBox visible = visible_bounds();
+  camera = frame_view(visible.empty() ? bounds() : visible, view, aspect, options);
   environment.up = options.axes.up;
 }
 

@@ -67,6 +67,9 @@ struct Scene {
   RenderObject& add(const TriMesh& mesh, const SurfaceMaterial& material, const std::string& name = "");
   /// World-space bounding box of all objects (after their transforms; ignoring cut planes).
   BoundingBox bounds() const;
+  /// Bounding box of what remains visible after the cut planes: vertices on the kept side, plus the
+  /// projections of removed vertices onto the plane that removed them (which contain the cross-section).
+  BoundingBox visible_bounds() const;
   /// Points the camera at all objects from the named view for an image of the given aspect (width/height),
   /// and turns the environment's up to the subject's up.
   void frame(ViewName view, double aspect, const FramingOptions& options = {});

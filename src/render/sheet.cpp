@@ -48,7 +48,7 @@ Image make_sheet(const std::vector<SheetCell>& cells, int columns, const std::st
 std::vector<Image> render_turntable(const Scene& scene, const RenderSettings& settings,
                                     const std::vector<ViewName>& views, const FramingOptions& framing) {
   const Renderer renderer(scene);
-  const BoundingBox box = scene.bounds();
+  const BoundingBox box = scene.visible_bounds();
   const double aspect = static_cast<double>(settings.width) / std::max(1, settings.height);
   std::vector<Image> frames;
   for (ViewName view : views) frames.push_back(renderer.render(frame_view(box, view, aspect, framing), settings));
@@ -59,7 +59,7 @@ std::vector<Image> render_turntable(const Scene& scene, const RenderSettings& se
                                     double elevation_deg, const FramingOptions& framing) {
   require_input(frames >= 1 && frames <= 3600, "turntable", "frames", "must be in 1..3600");
   const Renderer renderer(scene);
-  const BoundingBox box = scene.bounds();
+  const BoundingBox box = scene.visible_bounds();
   const double aspect = static_cast<double>(settings.width) / std::max(1, settings.height);
   // Frame every view with the same distance (the widest need) so the subject does not pulse in size.
   double distance = 0;

@@ -31,7 +31,8 @@ struct SheetStyle {
 Image make_sheet(const std::vector<SheetCell>& cells, int columns, const std::string& title,
                  const SheetStyle& style = {});
 
-/// Renders the scene from each named view (framed around the whole scene); the Embree scene is built once.
+/// Renders the scene from each named view (framed around what the cut planes leave); the Embree scene
+/// is built once.
 std::vector<Image> render_turntable(const Scene& scene, const RenderSettings& settings,
                                     const std::vector<ViewName>& views, const FramingOptions& framing = {});
 /// Renders `frames` views evenly spaced around the subject at `elevation_deg`, starting from the front.
