@@ -13,6 +13,16 @@ double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
   return (p - (a + t * ab)).norm();
 }
 
+// Whole pixels [first, last) covering [lo, hi] clipped to [0, size); false when none (also for NaN).
+bool pixel_span(double lo, double hi, int size, int* first, int* last) {
+  lo = std::max(lo, 0.0);
+  hi = std::min(hi, static_cast<double>(size));
+  if (!(lo < hi)) return false;
+  *first = static_cast<int>(std::floor(lo));
+  *last = std::min(size, static_cast<int>(std::ceil(hi)));
+  return *first < *last;
+}
+
 }  // namespace
 
 void blend_pixel(Image& image, int x, int y, const Vec4f& colour, float coverage) {
@@ -29,12 +39,12 @@ void blend_pixel(Image& image, int x, int y, const Vec4f& colour, float coverage
 void draw_line(Image& image, const Vec2& a, const Vec2& b, const Vec4f& colour, double width) {
   if (!a.allFinite() || !b.allFinite() || !(width > 0)) return;
   const double r = 0.5 * width;
-  const double lo_x = std::max(0.0, std::min(a[0], b[0]) - r - 1),
-               hi_x = std::min<double>(image.width(), std::max(a[0], b[0]) + r + 1);
-  const double lo_y = std::max(0.0, std::min(a[1], b[1]) - r - 1),
-               hi_y = std::min<double>(image.height(), std::max(a[1], b[1]) + r + 1);
-  for (int y = static_cast<int>(lo_y); y < static_cast<int>(hi_y); ++y)
-    for (int x = static_cast<int>(lo_x); x < static_cast<int>(hi_x); ++x) {
+  int x0, x1, y0, y1;
+  if (!pixel_span(std::min(a[0], b[0]) - r - 1, std::max(a[0], b[0]) + r + 1, image.width(), &x0, &x1) ||
+      !pixel_span(std::min(a[1], b[1]) - r - 1, std::max(a[1], b[1]) + r + 1, image.height(), &y0, &y1))
+    return;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
       const double d = segment_distance(Vec2(x + 0.5, y + 0.5), a, b);
       const double coverage = std::clamp(r + 0.5 - d, 0.0, 1.0);
       if (coverage > 0) blend_pixel(image, x, y, colour, static_cast<float>(coverage));
@@ -45,10 +55,10 @@ void draw_disc(Image& image, const Vec2& centre, double radius, const Vec4f& col
                const Vec4f& outline_colour) {
   if (!centre.allFinite() || !(radius > 0)) return;
   const double outer = radius + std::max(0.0, outline_width);
-  const int x0 = std::max(0, static_cast<int>(std::floor(centre[0] - outer - 1)));
-  const int x1 = std::min(image.width(), static_cast<int>(std::ceil(centre[0] + outer + 1)));
-  const int y0 = std::max(0, static_cast<int>(std::floor(centre[1] - outer - 1)));
-  const int y1 = std::min(image.height(), static_cast<int>(std::ceil(centre[1] + outer + 1)));
+  int x0, x1, y0, y1;
+  if (!pixel_span(centre[0] - outer - 1, centre[0] + outer + 1, image.width(), &x0, &x1) ||
+      !pixel_span(centre[1] - outer - 1, centre[1] + outer + 1, image.height(), &y0, &y1))
+    return;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const double d = (Vec2(x + 0.5, y + 0.5) - centre).norm();

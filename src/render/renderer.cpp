@@ -783,8 +783,8 @@ Image Renderer::render(const Camera& camera, const RenderSettings& settings) con
   const Image depth_buffer = depth(camera, settings.width, settings.height);
   const double tolerance = 2e-3 * m_impl->scale;
   const auto visible = [&](const Vec2& px, double z) {
-    const int x = static_cast<int>(std::floor(px[0])), y = static_cast<int>(std::floor(px[1]));
-    if (x < 0 || y < 0 || x >= settings.width || y >= settings.height) return true;
+    if (!(px[0] >= 0 && px[1] >= 0 && px[0] < settings.width && px[1] < settings.height)) return true;
+    const int x = static_cast<int>(px[0]), y = static_cast<int>(px[1]);
     return z <= static_cast<double>(depth_buffer.at(x, y)) + tolerance;
   };
   for (const LineOverlay& line : scene.lines) {
@@ -794,7 +794,8 @@ Image Renderer::render(const Camera& camera, const RenderSettings& settings) con
     if (!camera.project(line.from, settings.width, settings.height, &a, &za) ||
         !camera.project(line.to, settings.width, settings.height, &b, &zb))
       continue;
-    const int pieces = std::clamp(static_cast<int>((b - a).norm() / 2.0), 1, 4096);
+    const double length_px = (b - a).norm();
+    const int pieces = std::isfinite(length_px) ? static_cast<int>(std::clamp(length_px / 2.0, 1.0, 4096.0)) : 1;
     for (int k = 0; k < pieces; ++k) {
       const double t0 = static_cast<double>(k) / pieces, t1 = static_cast<double>(k + 1) / pieces;
       const Vec3 p0 = line.from + t0 * (line.to - line.from), p1 = line.from + t1 * (line.to - line.from);

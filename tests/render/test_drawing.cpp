@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "render/colour_bar.hpp"
 #include "render/draw.hpp"
@@ -54,6 +56,11 @@ TEST(Drawing, LineCoversItsWidth) {
   EXPECT_FLOAT_EQ(image.at(10, 10, 1), 1.0f);
   EXPECT_FLOAT_EQ(image.at(10, 16, 1), 0.0f);
   draw_line(image, Vec2(-1e9, 0), Vec2(1e9, 3), Vec4f(1, 1, 1, 1), 1.0);  // clipped, no hang
+  const Image before = image;
+  draw_line(image, Vec2(1e15, 0), Vec2(2e15, 3), Vec4f(1, 1, 1, 1), 1.0);
+  draw_disc(image, Vec2(-1e300, 5), 3, Vec4f(1, 1, 1, 1));
+  draw_disc(image, Vec2(std::nan(""), 5), 3, Vec4f(1, 1, 1, 1));
+  EXPECT_TRUE(image.data() == before.data());
 }
 
 TEST(ColourBar, TicksAndLegendPanel) {
