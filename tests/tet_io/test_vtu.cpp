@@ -1,7 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstring>
-#include <regex>
+#include <map>
 
 #include "core/error.hpp"
 #include "geometry/primitives.hpp"
@@ -46,11 +47,19 @@ std::vector<Case> all_cases() {
   return cases;
 }
 
+/// name="value" pairs of one start tag (plain string scanning: independent of forensim's XML reader).
 std::map<std::string, std::string> attributes_of(const std::string& tag) {
   std::map<std::string, std::string> out;
-  static const std::regex attribute(R"re(([A-Za-z_]+)="([^"]*)")re");
-  for (auto it = std::sregex_iterator(tag.begin(), tag.end(), attribute); it != std::sregex_iterator(); ++it) {
-    out[(*it)[1]] = (*it)[2];
+  std::size_t at = 0;
+  while ((at = tag.find("=\"", at)) != std::string::npos) {
+    std::size_t name_begin = at;
+    while (name_begin > 0 &&
+           (std::isalnum(static_cast<unsigned char>(tag[name_begin - 1])) || tag[name_begin - 1] == '_')) {
+      --name_begin;
+    }
+    const std::size_t close = tag.find('"', at + 2);
+    out[tag.substr(name_begin, at - name_begin)] = tag.substr(at + 2, close - at - 2);
+    at = close + 1;
   }
   return out;
 }
@@ -96,11 +105,9 @@ void check_appended_layout(const std::string& file, std::size_t nodes_per_cell, 
   const std::size_t cell_data_begin = file.find("<CellData"), cell_data_end = file.find("</CellData>");
 
   std::size_t position = 0, arrays = 0;
-  static const std::regex data_array(R"(<DataArray[^>]*>)");
   const std::string xml = file.substr(0, appended_tag);
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), data_array); it != std::sregex_iterator(); ++it) {
-    const auto a = attributes_of(it->str());
-    const std::size_t at = static_cast<std::size_t>(it->position());
+  for (std::size_t at = xml.find("<DataArray"); at != std::string::npos; at = xml.find("<DataArray", at + 1)) {
+    const auto a = attributes_of(xml.substr(at, xml.find('>', at) - at));
     const std::string& name = a.at("Name");
     EXPECT_EQ(a.at("format"), "appended") << name;
     std::size_t tuples = (at > cell_data_begin && at < cell_data_end) ? cells : points;
