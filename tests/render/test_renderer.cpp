@@ -272,3 +272,13 @@ TEST(Renderer, ObjectTransformMovesTheObject) {
   EXPECT_LT(image.at(25, 25, 0), 0.01f);
   EXPECT_LT(image.at(40 - 9, 25, 0), 0.01f);
 }
+
+TEST(Renderer, EmptySceneShowsTheBackground) {
+  Scene scene;
+  RenderSettings settings = small_settings(8, 1);
+  settings.background = Vec4f(0.2f, 0.4f, 0.6f, 1.0f);
+  const Image image = render(scene, settings);
+  EXPECT_EQ(image.rgba(3, 3), settings.background);
+  scene.add(TriMesh{}, SurfaceMaterial::clay(), "nothing");
+  EXPECT_EQ(render(scene, settings).rgba(3, 3), settings.background);
+}
