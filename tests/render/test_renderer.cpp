@@ -84,6 +84,18 @@ TEST(Renderer, CutAwayRemovesExactlyThePositiveHalfAndRevealsTheInside) {
     }
   EXPECT_EQ(right_covered, 0);
   EXPECT_GT(left_covered, 600);
+
+  // A cut plane of the outer object alone opens it (hollow, no cap) and shows the whole inner sphere.
+  scene.cutaway.reset();
+  scene.objects[0].cutaway = CutPlane{Vec3::Zero(), Vec3(0, -1, 0)};
+  const int inner_whole = count_green(render(scene, settings));
+  EXPECT_GT(inner_whole, 300);
+  // The scene's plane, with the inner object exempt, gives the same picture.
+  scene.objects[0].cutaway.reset();
+  scene.cutaway = CutPlane{Vec3::Zero(), Vec3(0, -1, 0)};
+  scene.objects[1].use_scene_cutaway = false;
+  scene.objects[0].material.draw_cap = false;
+  EXPECT_EQ(count_green(render(scene, settings)), inner_whole);
 }
 
 TEST(Renderer, HalfOpaqueOverlayShowsTheObjectBehind) {
