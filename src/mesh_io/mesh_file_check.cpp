@@ -93,6 +93,19 @@ std::int64_t read_binary_count(const unsigned char* p, int size, bool is_signed,
   return static_cast<std::int32_t>(v);
 }
 
+/// A finite decimal number as PLY ASCII bodies hold and Assimp's parser accepts: optional sign, then a digit
+/// or a point followed by a digit. (Assimp leaks memory when it meets anything else, so we reject it first.)
+bool is_ply_number(std::string_view token) {
+  if (!token.empty() && (token[0] == '+' || token[0] == '-')) token.remove_prefix(1);
+  if (token.empty()) return false;
+  const bool starts_ok = std::isdigit(static_cast<unsigned char>(token[0])) ||
+                         (token[0] == '.' && token.size() > 1 && std::isdigit(static_cast<unsigned char>(token[1])));
+  if (!starts_ok) return false;
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && ptr == token.data() + token.size() && std::isfinite(value);
+}
+
 void check_ply(const std::filesystem::path& path) {
   const std::string source = path.string();
   const std::string bytes = read_file(path);
@@ -185,6 +198,9 @@ void check_ply(const std::filesystem::path& path) {
           std::string_view token;
           require_input(next_token(token), source, "byte " + std::to_string(cursor),
                         "file ends inside element '" + e.name + "' " + std::to_string(i));
+          require_input(is_ply_number(token), source, "byte " + std::to_string(cursor - token.size()),
+                        "'" + std::string(token.substr(0, 32)) + "' in element '" + e.name + "' " + std::to_string(i) +
+                            " is not a finite number");
           if (p.count_size == 0) continue;
           std::int64_t n = -1;
           std::from_chars(token.data(), token.data() + token.size(), n);
@@ -196,6 +212,9 @@ void check_ply(const std::filesystem::path& path) {
           for (std::int64_t k = 0; k < n; ++k) {
             require_input(next_token(token), source, "byte " + std::to_string(cursor),
                           "file ends inside element '" + e.name + "' " + std::to_string(i));
+            require_input(is_ply_number(token), source, "byte " + std::to_string(cursor - token.size()),
+                          "'" + std::string(token.substr(0, 32)) + "' in element '" + e.name + "' " +
+                              std::to_string(i) + " is not a finite number");
           }
         }
       }
