@@ -71,6 +71,7 @@ struct SurfacePoint {
   double roughness = 0.5;
   double f0 = 0.04;
   bool skin = false;
+  bool cap = false;
 };
 
 // A light resolved into world coordinates for one camera.
@@ -505,6 +506,7 @@ SurfacePoint Renderer::Impl::surface(const Hit& hit, const Vec3& o, const Vec3& 
     sp.roughness = 0.8;
     sp.f0 = 0.02;
     sp.skin = false;
+    sp.cap = true;
     return sp;
   }
   const TriMesh& mesh = *p.mesh;
@@ -635,6 +637,9 @@ Vec3f Renderer::Impl::shade(const SurfacePoint& sp, const Vec3& view, const std:
   } else {
     out += sp.albedo.cwiseProduct(env.radiance(n)) * 0.8f;
   }
+  // Cross-sections are lit mostly edge-on by the studio rig; a soft light from the viewer keeps their
+  // colours readable.
+  if (sp.cap) out += sp.albedo * static_cast<float>(0.35 * std::abs(n.dot(view)));
   return out;
 }
 
