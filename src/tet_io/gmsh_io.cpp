@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -113,6 +114,15 @@ std::string name_of_label(int label) {
   return "region_" + std::to_string(label);
 }
 
+/// A $NodeData or $ElementData section as read; resolved to a field once nodes and tets are known.
+struct RawField {
+  bool on_nodes = true;
+  std::string name;
+  int components = 1;
+  std::vector<std::uint64_t> tags;
+  std::vector<double> values;  // components per tag
+};
+
 struct RawTet {
   std::uint64_t tag;
   std::array<std::uint64_t, 4> nodes;
@@ -153,6 +163,8 @@ class GmshReader {
         } else {
           m_binary ? read_elements_binary() : read_elements_ascii();
         }
+      } else if (name == "NodeData" || name == "ElementData") {
+        read_data(name == "NodeData");
       } else {
         skip_section(name);
         continue;
@@ -502,6 +514,94 @@ class GmshReader {
     }
   }
 
+  // ---- $NodeData / $ElementData (same layout in 2.2 and 4.1; the values are binary in binary files)
+  void read_data(bool on_nodes) {
+    RawField field;
+    field.on_nodes = on_nodes;
+    const std::int64_t string_count = m_in.integer("string tag count", 0, 1000);
+    for (std::int64_t i = 0; i < string_count; ++i) {
+      m_in.skip_whitespace();
+      std::string_view text = m_in.line();
+      if (!text.empty() && text.front() == '"') {
+        const std::size_t close = text.find('"', 1);
+        if (close == std::string_view::npos) m_in.fail("string tag is not closed by a double quote");
+        text = text.substr(1, close - 1);
+      }
+      if (i == 0) field.name = std::string(text);
+    }
+    const std::int64_t real_count = m_in.integer("real tag count", 0, 1000);
+    for (std::int64_t i = 0; i < real_count; ++i) m_in.finite_double("real tag");
+    const std::int64_t integer_count = m_in.integer("integer tag count", 3, 1000);
+    std::int64_t count = 0;
+    for (std::int64_t i = 0; i < integer_count; ++i) {
+      if (i == 1)
+        field.components = static_cast<int>(m_in.integer("component count", 1, 9));
+      else if (i == 2)
+        count = m_in.integer("data entry count", 0, INT32_MAX);
+      else
+        m_in.integer("integer tag", INT64_MIN, INT64_MAX);
+    }
+    const auto components = static_cast<std::size_t>(field.components);
+    check_count(static_cast<std::uint64_t>(count), m_binary ? 4 + 8 * components : 2 * (1 + components), "data entry");
+    field.tags.reserve(static_cast<std::size_t>(count));
+    field.values.reserve(static_cast<std::size_t>(count) * components);
+    if (m_binary) {
+      m_in.line();  // end of the last integer tag's line; binary entries follow
+      for (std::int64_t e = 0; e < count; ++e) {
+        const auto tag = m_in.binary<std::int32_t>("data entry tag");
+        if (tag <= 0) m_in.fail_binary("data entry tag " + std::to_string(tag) + " is not positive");
+        field.tags.push_back(static_cast<std::uint64_t>(tag));
+        for (std::size_t k = 0; k < components; ++k) {
+          const auto value = m_in.binary<double>("data value");
+          if (!std::isfinite(value)) m_in.fail_binary("value of field '" + field.name + "' is not finite");
+          field.values.push_back(value);
+        }
+      }
+    } else {
+      for (std::int64_t e = 0; e < count; ++e) {
+        field.tags.push_back(static_cast<std::uint64_t>(m_in.integer("data entry tag", 1, INT64_MAX)));
+        for (std::size_t k = 0; k < components; ++k) field.values.push_back(m_in.finite_double("data value"));
+      }
+    }
+    m_fields.push_back(std::move(field));
+  }
+
+  /// Stores the data sections that give a scalar or 3-vector for every node (every tet); others are skipped.
+  void build_fields(TetMesh& mesh) const {
+    for (const RawField& raw : m_fields) {
+      if (raw.components != 1 && raw.components != 3) continue;
+      const std::size_t count = raw.on_nodes ? mesh.vertex_count() : mesh.tet_count();
+      const auto components = static_cast<std::size_t>(raw.components);
+      std::vector<double> values(count * components, std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t e = 0; e < raw.tags.size(); ++e) {
+        std::size_t index = 0;
+        if (raw.on_nodes) {
+          const auto it = m_node_index.find(raw.tags[e]);
+          if (it == m_node_index.end()) {
+            throw InputError(m_in.source(), "$NodeData '" + raw.name + "'",
+                             "node tag " + std::to_string(raw.tags[e]) + " is not defined in $Nodes");
+          }
+          index = static_cast<std::size_t>(it->second);
+        } else {
+          const auto it = std::lower_bound(m_tets.begin(), m_tets.end(), raw.tags[e],
+                                           [](const RawTet& t, std::uint64_t tag) { return t.tag < tag; });
+          if (it == m_tets.end() || it->tag != raw.tags[e]) continue;  // data on a skipped element type
+          index = static_cast<std::size_t>(it - m_tets.begin());
+        }
+        for (std::size_t k = 0; k < components; ++k) values[index * components + k] = raw.values[e * components + k];
+      }
+      if (std::any_of(values.begin(), values.end(), [](double v) { return std::isnan(v); })) continue;  // partial
+      FieldSet& fields = raw.on_nodes ? mesh.vertex_fields : mesh.tet_fields;
+      if (raw.components == 1) {
+        fields.scalars[raw.name] = std::move(values);
+      } else {
+        std::vector<Vec3> vectors(count);
+        for (std::size_t i = 0; i < count; ++i) vectors[i] = Vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+        fields.vectors[raw.name] = std::move(vectors);
+      }
+    }
+  }
+
   TetMesh build() {
     std::stable_sort(m_tets.begin(), m_tets.end(), [](const RawTet& a, const RawTet& b) { return a.tag < b.tag; });
     if (m_tets.size() > static_cast<std::size_t>(max_index)) m_in.fail("more than 2^31-1 tets");
@@ -529,6 +629,7 @@ class GmshReader {
       labelled = labelled || raw.label != tissue_flesh;
     }
     if (!labelled) mesh.tet_labels.clear();
+    build_fields(mesh);
     mesh.validate(m_in.source());
     return mesh;
   }
@@ -541,10 +642,46 @@ class GmshReader {
   std::unordered_map<int, int> m_volume_physical;               // volume entity tag -> first physical tag
   std::vector<Vec3> m_positions;
   std::unordered_map<std::uint64_t, Index> m_node_index;  // node tag -> index
-  std::vector<RawTet> m_tets;
+  std::vector<RawTet> m_tets;                             // sorted by tag in build()
+  std::vector<RawField> m_fields;
 };
 
 // ---- writing
+template <class T>
+void append_binary(std::string& out, T value);
+
+/// One $NodeData/$ElementData view per field (time 0, step 0); entity tags are index + 1 as written above.
+void append_field_data(std::string& out, const FieldSet& fields, bool on_nodes, bool binary) {
+  const char* section = on_nodes ? "NodeData" : "ElementData";
+  auto write = [&](const std::string& name, std::size_t count, int components, auto value_at) {
+    std::string quoted_name = name;
+    std::replace(quoted_name.begin(), quoted_name.end(), '"', '\'');  // names are double-quoted in the file
+    out += std::string("$") + section + "\n1\n\"" + quoted_name + "\"\n1\n0\n3\n0\n" + std::to_string(components) +
+           "\n" + std::to_string(count) + "\n";
+    for (std::size_t i = 0; i < count; ++i) {
+      if (binary) {
+        append_binary<std::int32_t>(out, static_cast<std::int32_t>(i + 1));
+        for (int k = 0; k < components; ++k) append_binary<double>(out, value_at(i, k));
+      } else {
+        append_integer(out, static_cast<std::int64_t>(i) + 1);
+        for (int k = 0; k < components; ++k) {
+          out += ' ';
+          append_double(out, value_at(i, k));
+        }
+        out += '\n';
+      }
+    }
+    out += binary ? "\n$End" : "$End";
+    out += std::string(section) + "\n";
+  };
+  for (const auto& [name, values] : fields.scalars) {
+    write(name, values.size(), 1, [&values](std::size_t i, int) { return values[i]; });
+  }
+  for (const auto& [name, values] : fields.vectors) {
+    write(name, values.size(), 3, [&values](std::size_t i, int k) { return values[i][k]; });
+  }
+}
+
 template <class T>
 void append_binary(std::string& out, T value) {
   char bytes[sizeof(T)];
@@ -710,6 +847,8 @@ void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool bin
     }
   }
   out += binary ? "\n$EndElements\n" : "$EndElements\n";
+  append_field_data(out, mesh.vertex_fields, true, binary);
+  append_field_data(out, mesh.tet_fields, false, binary);
   write_file_atomic(path, out);
 }
 

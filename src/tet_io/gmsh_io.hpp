@@ -22,7 +22,9 @@ namespace forensim {
 /// $MeshFormat, $PhysicalNames, $Entities, $Nodes and $Elements are read, other sections skipped. Only
 /// linear tets (element type 4) are kept; every other element type (points, lines, triangles, quadratic
 /// elements...) is skipped. Node tags may be sparse and in any order: nodes become 0-based indices in file
-/// order, tets are ordered by element tag. Fields are not read (MSH $NodeData is skipped).
+/// order, tets are ordered by element tag. $NodeData/$ElementData views with 1 or 3 components that give a
+/// value for every node (every tet) become vertex (tet) scalar or vector fields named after the view (the last
+/// time step wins); partial views, other component counts and data on skipped elements are ignored.
 /// Throws IoError when the file cannot be read and InputError(path, "line N" or "byte N", problem) for a
 /// malformed, truncated or unsupported file (MSH 4.0, 2.2 binary, big-endian binary, undefined node tags,
 /// non-finite coordinates, counts that do not fit the file).
@@ -33,7 +35,8 @@ TetMesh parse_gmsh(std::string_view bytes, const std::string& source);
 /// Writes `mesh` as MSH 4.1 (ASCII, or binary when `binary`), atomically. Positions are written exactly
 /// (shortest round-trip decimal in ASCII, IEEE doubles in binary); node tags are 1..#V in index order and
 /// element tags 1..#T in tet order, so read_gmsh restores indices and order exactly. One volume entity and
-/// one physical group per distinct label (see the label convention above); fields are not written.
+/// one physical group per distinct label (see the label convention above). Every vertex and tet field is
+/// written as a $NodeData/$ElementData view (time 0) that Gmsh displays; '"' in field names becomes '\''.
 /// Throws InputError when `mesh` fails validate(), IoError when the file cannot be written.
 void write_gmsh(const std::filesystem::path& path, const TetMesh& mesh, bool binary = false);
 

@@ -17,7 +17,8 @@ TEST(GmshIo, AsciiRoundTripKeepsIndicesPositionsAndLabels) {
   write_gmsh(path, mesh);
   const TetMesh back = read_gmsh(path);
   test::expect_same_geometry(mesh, back);
-  EXPECT_TRUE(back.vertex_fields.empty());
+  test::expect_same_fields(mesh.vertex_fields, back.vertex_fields);
+  test::expect_same_fields(mesh.tet_fields, back.tet_fields);
   const std::string text = test::slurp(path);
   EXPECT_NE(text.find("3 1 \"flesh\""), std::string::npos);
   EXPECT_NE(text.find("3 2 \"bone\""), std::string::npos);
@@ -29,7 +30,10 @@ TEST(GmshIo, BinaryRoundTripKeepsIndicesPositionsAndLabels) {
   const auto path = test::scratch_dir("msh") / "box.msh";
   write_gmsh(path, mesh, true);
   EXPECT_EQ(test::slurp(path).rfind("$MeshFormat\n4.1 1 8\n", 0), 0u);
-  test::expect_same_geometry(mesh, read_gmsh(path));
+  const TetMesh back = read_gmsh(path);
+  test::expect_same_geometry(mesh, back);
+  test::expect_same_fields(mesh.vertex_fields, back.vertex_fields);
+  test::expect_same_fields(mesh.tet_fields, back.tet_fields);
 }
 
 TEST(GmshIo, UnlabelledMeshReadsBackUnlabelled) {
