@@ -106,6 +106,13 @@ bool is_ply_number(std::string_view token) {
   return ec == std::errc() && ptr == token.data() + token.size() && std::isfinite(value);
 }
 
+[[noreturn]] void fail_element(const std::string& source, std::uint64_t at, const std::string& element,
+                               std::uint64_t item, const std::string& problem) {
+  std::string message = problem;
+  message.append(" in element '").append(element).append("' ").append(std::to_string(item));
+  throw InputError(source, "byte " + std::to_string(at), message);
+}
+
 void check_ply(const std::filesystem::path& path) {
   const std::string source = path.string();
   const std::string bytes = read_file(path);
@@ -196,25 +203,22 @@ void check_ply(const std::filesystem::path& path) {
       for (std::uint64_t i = 0; i < e.count; ++i) {
         for (const PlyProperty& p : e.properties) {
           std::string_view token;
-          require_input(next_token(token), source, "byte " + std::to_string(cursor),
-                        "file ends inside element '" + e.name + "' " + std::to_string(i));
-          require_input(is_ply_number(token), source, "byte " + std::to_string(cursor - token.size()),
-                        "'" + std::string(token.substr(0, 32)) + "' in element '" + e.name + "' " + std::to_string(i) +
-                            " is not a finite number");
+          if (!next_token(token)) fail_element(source, cursor, e.name, i, "file ends");
+          if (!is_ply_number(token))
+            fail_element(source, cursor - token.size(), e.name, i, "a value is not a finite number");
           if (p.count_size == 0) continue;
           std::int64_t n = -1;
           std::from_chars(token.data(), token.data() + token.size(), n);
           const std::uint64_t remaining = bytes.size() - cursor;
-          require_input(n >= 0 && static_cast<std::uint64_t>(n) <= remaining / 2 + 1, source,
-                        "byte " + std::to_string(cursor),
-                        "list length '" + std::string(token) + "' in element '" + e.name + "' " + std::to_string(i) +
-                            " is negative or longer than the rest of the file");
+          if (n < 0 || static_cast<std::uint64_t>(n) > remaining / 2 + 1) {
+            fail_element(source, cursor - token.size(), e.name, i,
+                         "list length " + std::to_string(n) + " is negative or longer than the rest of the file");
+          }
           for (std::int64_t k = 0; k < n; ++k) {
-            require_input(next_token(token), source, "byte " + std::to_string(cursor),
-                          "file ends inside element '" + e.name + "' " + std::to_string(i));
-            require_input(is_ply_number(token), source, "byte " + std::to_string(cursor - token.size()),
-                          "'" + std::string(token.substr(0, 32)) + "' in element '" + e.name + "' " +
-                              std::to_string(i) + " is not a finite number");
+            if (!next_token(token)) fail_element(source, cursor, e.name, i, "file ends");
+            if (!is_ply_number(token)) {
+              fail_element(source, cursor - token.size(), e.name, i, "a value is not a finite number");
+            }
           }
         }
       }
@@ -243,19 +247,17 @@ void check_ply(const std::filesystem::path& path) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
       for (const PlyProperty& p : e.properties) {
         if (p.count_size == 0) {
-          require_input(cursor + p.size <= bytes.size(), source, "byte " + std::to_string(cursor),
-                        "file ends inside element '" + e.name + "' " + std::to_string(i));
+          if (cursor + p.size > bytes.size()) fail_element(source, cursor, e.name, i, "file ends");
           cursor += p.size;
           continue;
         }
-        require_input(cursor + p.count_size <= bytes.size(), source, "byte " + std::to_string(cursor),
-                      "file ends inside element '" + e.name + "' " + std::to_string(i));
+        if (cursor + p.count_size > bytes.size()) fail_element(source, cursor, e.name, i, "file ends");
         const std::int64_t n = read_binary_count(data + cursor, p.count_size, p.count_signed, big_endian);
         cursor += p.count_size;
-        require_input(n >= 0 && static_cast<std::uint64_t>(n) <= (bytes.size() - cursor) / p.size, source,
-                      "byte " + std::to_string(cursor - p.count_size),
-                      "list length " + std::to_string(n) + " in element '" + e.name + "' " + std::to_string(i) +
-                          " is negative or longer than the rest of the file");
+        if (n < 0 || static_cast<std::uint64_t>(n) > (bytes.size() - cursor) / p.size) {
+          fail_element(source, cursor - p.count_size, e.name, i,
+                       "list length " + std::to_string(n) + " is negative or longer than the rest of the file");
+        }
         cursor += static_cast<std::uint64_t>(n) * p.size;
       }
     }
@@ -338,9 +340,11 @@ void check_obj(const std::filesystem::path& path) {
         if (words[w][0] == '#') break;
         double value = 0.0;
         const auto [ptr, ec] = std::from_chars(words[w].data(), words[w].data() + words[w].size(), value);
-        const std::string what = std::string(names[kind]) + " coordinate '" + std::string(words[w]) + "'";
-        require_input(ec != std::errc::invalid_argument, source, location(), what + " is not a number");
-        require_input(ec == std::errc() && std::isfinite(value), source, location(), what + " is not a finite number");
+        if (ec != std::errc() || !std::isfinite(value)) {
+          throw InputError(source, location(),
+                           std::string(names[kind]) + " coordinate '" + std::string(words[w].substr(0, 32)) +
+                               (ec == std::errc::invalid_argument ? "' is not a number" : "' is not a finite number"));
+        }
       }
       return;
     }
@@ -356,13 +360,18 @@ void check_obj(const std::filesystem::path& path) {
         if (field.empty()) continue;  // "1//3"
         std::int64_t index = 0;
         const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
-        require_input(ec == std::errc() && ptr == field.data() + field.size(), source, location(),
-                      std::string(names[kind]) + " index '" + std::string(field) + "' is not an integer");
+        if (ec != std::errc() || ptr != field.data() + field.size()) {
+          throw InputError(
+              source, location(),
+              std::string(names[kind]) + " index '" + std::string(field.substr(0, 32)) + "' is not an integer");
+        }
         const bool valid = (index > 0 && static_cast<std::uint64_t>(index) <= total[kind]) ||
                            (index < 0 && static_cast<std::uint64_t>(-index) <= seen[kind]);
-        require_input(valid, source, location(),
-                      std::string(names[kind]) + " index " + std::to_string(index) + " is out of range (" +
-                          std::to_string(total[kind]) + " defined)");
+        if (!valid) {
+          throw InputError(source, location(),
+                           std::string(names[kind]) + " index " + std::to_string(index) + " is out of range (" +
+                               std::to_string(total[kind]) + " defined)");
+        }
       }
     }
   });
