@@ -32,7 +32,7 @@ Vec3 direction_of(double azimuth_deg, double elevation_deg, const ViewAxes& axes
 
 }  // namespace
 
-Camera::Camera() : m_eye(0, -1000, 0), m_target(Vec3::Zero()) {
+Camera::Camera() : m_eye(0, -1000, 0), m_target(Vec3::Zero()), m_tan_half_fov(std::tan(15.0 * degrees)) {
   set_frame(m_eye, m_target, Vec3::UnitZ(), &m_forward, &m_right, &m_up);
 }
 
@@ -45,6 +45,7 @@ Camera Camera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, doub
   set_frame(eye, target, up, &c.m_forward, &c.m_right, &c.m_up);
   c.m_projection = ProjectionKind::perspective;
   c.m_fov_deg = vertical_fov_deg;
+  c.m_tan_half_fov = std::tan(0.5 * vertical_fov_deg * degrees);
   return c;
 }
 
@@ -63,7 +64,7 @@ Ray3 Camera::ray(double px, double py, int width, int height) const {
   const double aspect = static_cast<double>(width) / height;
   Ray3 r;
   if (m_projection == ProjectionKind::perspective) {
-    const double t = std::tan(0.5 * m_fov_deg * degrees);
+    const double t = m_tan_half_fov;
     r.origin = m_eye;
     r.direction = (m_forward + sx * t * aspect * m_right + sy * t * m_up).normalized();
   } else {

@@ -51,6 +51,7 @@ class Camera {
   Vec3 m_eye, m_target, m_forward, m_right, m_up;
   ProjectionKind m_projection = ProjectionKind::perspective;
   double m_fov_deg = 30.0;
+  double m_tan_half_fov = 0.0;  // tan(fov / 2), cached for ray generation
   double m_view_height = 100.0;
 };
 

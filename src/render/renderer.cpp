@@ -78,6 +78,7 @@ struct SurfacePoint {
 struct WorldLight {
   Light light;
   Vec3 direction, position, edge_u, edge_v;
+  double cos_max = 1.0;  // directional: cosine of the angular radius
 };
 
 struct LightSample {
@@ -118,8 +119,7 @@ LightSample sample_light(const WorldLight& wl, const Vec3& p, const Vec2& u) {
   const Vec3f emitted = l.colour * static_cast<float>(l.intensity);
   switch (l.kind) {
     case LightKind::directional: {
-      const double cos_max = std::cos(std::clamp(l.angular_radius_deg, 0.0, 89.0) * pi / 180.0);
-      s.wi = l.angular_radius_deg > 0 ? sample_cone(wl.direction, cos_max, u) : wl.direction;
+      s.wi = l.angular_radius_deg > 0 ? sample_cone(wl.direction, wl.cos_max, u) : wl.direction;
       // intensity 1 makes a white Lambertian surface facing the light as bright as its albedo.
       s.weight = emitted * static_cast<float>(pi);
       s.valid = true;
@@ -385,6 +385,7 @@ std::vector<WorldLight> Renderer::Impl::resolve_lights(const Camera& camera) con
     if (l.kind == LightKind::directional) {
       if (!(w.direction.norm() > 0) || !w.direction.allFinite()) continue;
       w.direction.normalize();
+      w.cos_max = std::cos(std::clamp(l.angular_radius_deg, 0.0, 89.0) * pi / 180.0);
     }
     if (!(l.intensity > 0) || !std::isfinite(l.intensity)) continue;
     out.push_back(w);

@@ -40,7 +40,7 @@ struct LineOverlay {
   Vec3 from = Vec3::Zero(), to = Vec3::Zero();
   Vec4f colour = Vec4f(1.0f, 0.85f, 0.1f, 1.0f);  ///< display (sRGB) colour and alpha
   double width_px = 2.0;
-  bool depth_test = true;  ///< hidden where opaque surfaces are in front
+  bool depth_test = true;  ///< drawn faint (20% alpha) where an opaque surface is in front
 };
 
 /// A 3D point overlay drawn as a dot (landmarks).
@@ -48,8 +48,8 @@ struct PointOverlay {
   Vec3 position = Vec3::Zero();
   Vec4f colour = Vec4f(0.9f, 0.15f, 0.1f, 1.0f);  ///< display (sRGB) colour and alpha
   double radius_px = 4.0;
-  bool depth_test = true;
-  std::string label;  ///< optional text drawn beside the dot
+  bool depth_test = true;  ///< drawn faint (25% alpha) where an opaque surface is in front
+  std::string label;       ///< optional text drawn beside the dot
 };
 
 struct Scene {
