@@ -110,6 +110,64 @@ TEST(MeshRoundTrip, GlbComesBackInMillimetresWithSeamsNormalsColorsAndEmbeddedTe
   EXPECT_NEAR(back.mesh.material.base_color[1], 0.6f, 1e-6f);
 }
 
+TEST(MeshRoundTrip, GlbTextureRolesAndMaterialFilesAreEmbedded) {
+  const auto dir = test::scratch_dir("glb-textures");
+  // Textures named by the material (as import_mesh returns them for OBJ) are embedded from their files.
+  TriMesh box = test_box();
+  write_file_atomic(dir / "albedo.png", test::tiny_png());
+  write_file_atomic(dir / "normal.png", test::tiny_png());
+  box.material.base_color_texture = (dir / "albedo.png").string();
+  box.material.normal_texture = "normal.png";                       // relative to the output's folder
+  box.material.roughness_texture = (dir / "missing.png").string();  // absent: warned about, not embedded
+  write_mesh(dir / "box.glb", box);
+  const ImportedMesh back = import_mesh_with_textures(dir / "box.glb");
+  std::vector<std::string> roles;
+  for (const EmbeddedTexture& t : back.textures) {
+    roles.push_back(t.role);
+    EXPECT_EQ(t.bytes, test::tiny_png());
+    EXPECT_EQ(t.format, "png");
+  }
+  EXPECT_EQ(roles, (std::vector<std::string>{"base_color", "normal"}));
+  EXPECT_TRUE(back.mesh.material.base_color_texture.empty());  // embedded: bytes instead of a path
+
+  // All three glTF slots written from bytes come back with their roles.
+  GltfMeshNode node;
+  node.name = "box";
+  node.mesh = test_box();
+  node.textures = {test::tiny_png(), test::tiny_png(), test::tiny_png()};
+  GltfScene scene;
+  scene.nodes.push_back(node);
+  write_gltf(dir / "three.glb", scene);
+  roles.clear();
+  for (const EmbeddedTexture& t : import_mesh_with_textures(dir / "three.glb").textures) roles.push_back(t.role);
+  EXPECT_EQ(roles, (std::vector<std::string>{"base_color", "normal", "roughness"}));
+}
+
+TEST(MeshRoundTrip, MeshesWithAndWithoutUvsMergeWithPlaceholderUvs) {
+  const auto dir = test::scratch_dir("glb-mixed-uvs");
+  GltfScene scene;
+  GltfMeshNode plain, mapped;
+  plain.name = "plain";
+  plain.mesh = make_box_mesh(Vec3(0, 0, 0), Vec3(50, 50, 50), 1);
+  mapped.name = "mapped";
+  mapped.mesh = make_uv_box(Vec3(100, 0, 0), Vec3(150, 50, 50), 1);
+  scene.nodes = {plain, mapped};
+  write_gltf(dir / "mixed.glb", scene);
+  const TriMesh back = import_mesh(dir / "mixed.glb");
+  ASSERT_TRUE(back.has_uvs());
+  ASSERT_EQ(back.triangle_count(), 24u);
+  for (std::size_t f = 0; f < back.triangle_count(); ++f) {
+    const bool in_plain_box = back.positions[back.triangles[f][0]][0] < 75.0;
+    for (int c = 0; c < 3; ++c) {
+      const Vec2& uv = back.uvs[back.triangle_uvs[f][c]];
+      if (in_plain_box)
+        EXPECT_EQ(uv, Vec2::Zero()) << "triangle " << f;
+      else
+        EXPECT_GT(uv.norm(), 0.0) << "triangle " << f;
+    }
+  }
+}
+
 TEST(MeshRoundTrip, GltfJsonWithEmbeddedBuffer) {
   const auto dir = test::scratch_dir("gltf");
   const TriMesh box = test_box();
