@@ -32,8 +32,14 @@ std::string format_tick(double value, double step, int decimals) {
   return buffer;
 }
 
+namespace {
+double font_size(double px) {
+  return std::isfinite(px) ? std::clamp(px, 4.0, 200.0) : 16.0;
+}
+}  // namespace
+
 void draw_colour_bar(Image& image, int x, int y, int width, int height, const ColourBar& bar) {
-  const double font = bar.font_px;
+  const double font = font_size(bar.font_px);
   const std::string heading = bar.unit.empty()    ? bar.title
                               : bar.title.empty() ? "[" + bar.unit + "]"
                                                   : bar.title + " [" + bar.unit + "]";
@@ -67,15 +73,15 @@ Image with_colour_bar(const Image& picture, const ColourBar& bar, const std::opt
   const std::string longest = format_tick(std::abs(bar.max) > std::abs(bar.min) ? bar.max : bar.min,
                                           (bar.max - bar.min) / std::max(1, bar.ticks - 1), bar.decimals);
   const std::string heading = bar.title + (bar.unit.empty() ? "" : " [" + bar.unit + "]");
-  const double label_width = measure_text("-" + longest, bar.font_px).width;
-  const int bar_width = static_cast<int>(bar.font_px * 1.4);
-  const int panel_width =
-      static_cast<int>(std::ceil(std::max(measure_text(heading, bar.font_px).width, bar_width + 8 + label_width))) +
-      static_cast<int>(2 * bar.font_px);
+  const double font = font_size(bar.font_px);
+  const double label_width = measure_text("-" + longest, font).width;
+  const int bar_width = static_cast<int>(font * 1.4);
+  const double content = std::max(measure_text(heading, font).width, bar_width + 8 + label_width);
+  const int panel_width = static_cast<int>(std::ceil(std::min(content, 4000.0))) + static_cast<int>(2 * font);
   Image out(picture.width() + panel_width, picture.height(), 4, 0.0f, PixelEncoding::srgb);
   out.fill(panel ? *panel : (picture.empty() ? Vec4f(1, 1, 1, 1) : picture.rgba(0, 0)));
   out.paste(picture, 0, 0);
-  const int margin = static_cast<int>(bar.font_px);
+  const int margin = static_cast<int>(font);
   const int legend_height = std::min(picture.height() - 2 * margin, std::max(120, picture.height() * 2 / 3));
   draw_colour_bar(out, picture.width() + margin / 2, (picture.height() - legend_height) / 2, panel_width - margin,
                   legend_height, bar);

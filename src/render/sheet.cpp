@@ -22,15 +22,17 @@ Image make_sheet(const std::vector<SheetCell>& cells, int columns, const std::st
   const int count = static_cast<int>(cells.size());
   columns = std::min(columns, count);
   const int rows = (count + columns - 1) / columns;
-  const int pad = std::max(0, style.padding);
-  const int caption_h = any_caption ? static_cast<int>(std::ceil(style.caption_px * 1.5)) : 0;
-  const int title_h = title.empty() ? 0 : static_cast<int>(std::ceil(style.title_px * 1.6));
+  const auto font_size = [](double px) { return std::isfinite(px) ? std::clamp(px, 1.0, 500.0) : 16.0; };
+  const double caption_px = font_size(style.caption_px), title_px = font_size(style.title_px);
+  const int pad = std::clamp(style.padding, 0, 10000);
+  const int caption_h = any_caption ? static_cast<int>(std::ceil(caption_px * 1.5)) : 0;
+  const int title_h = title.empty() ? 0 : static_cast<int>(std::ceil(title_px * 1.6));
   const long long width = static_cast<long long>(columns) * (cell_w + pad) + pad;
   const long long height = static_cast<long long>(rows) * (cell_h + caption_h + pad) + pad + title_h;
   require_input(width * height <= static_cast<long long>(max_image_pixels), "sheet", "", "sheet would be too large");
   Image sheet(static_cast<int>(width), static_cast<int>(height), 4, 0.0f, PixelEncoding::srgb);
   sheet.fill(style.background);
-  if (!title.empty()) draw_text(sheet, 0.5 * width, pad * 0.75, title, style.title_px, style.text, TextAlign::centre);
+  if (!title.empty()) draw_text(sheet, 0.5 * width, pad * 0.75, title, title_px, style.text, TextAlign::centre);
   for (int i = 0; i < count; ++i) {
     const int col = i % columns, row = i / columns;
     const int x0 = pad + col * (cell_w + pad);
@@ -39,7 +41,7 @@ Image make_sheet(const std::vector<SheetCell>& cells, int columns, const std::st
     sheet.paste(picture, x0 + (cell_w - picture.width()) / 2, y0 + (cell_h - picture.height()) / 2, true);
     const std::string& caption = cells[static_cast<std::size_t>(i)].caption;
     if (!caption.empty())
-      draw_text(sheet, x0 + 0.5 * cell_w, y0 + cell_h + 0.25 * style.caption_px, caption, style.caption_px, style.text,
+      draw_text(sheet, x0 + 0.5 * cell_w, y0 + cell_h + 0.25 * caption_px, caption, caption_px, style.text,
                 TextAlign::centre);
   }
   return sheet;
