@@ -203,4 +203,38 @@ std::string decode_vtk_base64_array(std::string_view text, VtkHeaderType header_
   }
 }
 
+std::string decode_vtk_appended_base64(std::string_view text, VtkHeaderType header_type, bool compressed,
+                                       std::size_t expected_size, const std::string& source,
+                                       const std::string& location) {
+  const std::size_t word = word_size(header_type);
+  auto decode_prefix = [&](std::size_t chars) {
+    if (chars > text.size()) throw InputError(source, location, "truncated base64 appended data");
+    std::size_t bad = 0;
+    auto bytes = base64_decode(text.substr(0, chars), bad);
+    if (!bytes) throw InputError(source, location, "bad base64 data at character " + std::to_string(bad));
+    return std::move(*bytes);
+  };
+  std::size_t chars = 0;
+  if (!compressed) {
+    // Header and data form one base64 stream: the header word gives its length.
+    const std::uint64_t size = word_at(decode_prefix(base64_length(word)), 0, header_type);
+    if (size > text.size()) throw InputError(source, location, "truncated base64 appended data");
+    chars = base64_length(word + static_cast<std::size_t>(size));
+  } else {
+    // The compression header is its own chunk, then the blocks as one chunk.
+    const std::uint64_t blocks = word_at(decode_prefix(base64_length(3 * word)), 0, header_type);
+    if (blocks > text.size() / word) throw InputError(source, location, "compressed block count is too large");
+    const std::size_t header_chars = base64_length((3 + static_cast<std::size_t>(blocks)) * word);
+    const std::string header = decode_prefix(header_chars);
+    std::uint64_t payload = 0;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      payload += word_at(header, (3 + b) * word, header_type);
+      if (payload > text.size()) throw InputError(source, location, "truncated base64 appended data");
+    }
+    chars = header_chars + base64_length(static_cast<std::size_t>(payload));
+  }
+  if (chars > text.size()) throw InputError(source, location, "truncated base64 appended data");
+  return decode_vtk_base64_array(text.substr(0, chars), header_type, compressed, expected_size, source, location);
+}
+
 }  // namespace forensim

@@ -38,6 +38,12 @@ std::string vtk_array_to_base64(const VtkEncodedArray& array, bool compressed);
 /// truncated data, wrong byte counts, bad block headers or corrupt zlib streams.
 std::string decode_vtk_array(std::string_view bytes, VtkHeaderType header_type, bool compressed,
                              std::size_t expected_size, const std::string& source, std::size_t base_offset);
+/// Decodes the array that starts at `text[0]` of base64-encoded appended data (<AppendedData
+/// encoding="base64">; offsets count characters), finding where it ends from its own header. Errors as
+/// decode_vtk_base64_array.
+std::string decode_vtk_appended_base64(std::string_view text, VtkHeaderType header_type, bool compressed,
+                                       std::size_t expected_size, const std::string& source,
+                                       const std::string& location);
 /// Decodes inline base64 text (whitespace allowed anywhere) of one array into exactly `expected_size`
 /// bytes. Errors as decode_vtk_array, located at the data array's `location` (e.g. "line 12").
 std::string decode_vtk_base64_array(std::string_view text, VtkHeaderType header_type, bool compressed,

@@ -142,10 +142,11 @@ class VtuReader {
     }
     if (const XmlElement* appended = root.child("AppendedData")) {
       const std::string* encoding = appended->attribute("encoding");
-      if (!encoding || *encoding != "raw") {
-        fail(*appended,
-             "appended data encoding '" + (encoding ? *encoding : std::string()) + "' is not supported; only raw is");
+      if (!encoding || (*encoding != "raw" && *encoding != "base64")) {
+        fail(*appended, "appended data encoding '" + (encoding ? *encoding : std::string()) +
+                            "' is not supported; only raw and base64 are");
       }
+      m_appended_base64 = *encoding == "base64";
       if (!m_doc.appended) fail(*appended, "appended data block not found");
     }
 
@@ -237,7 +238,7 @@ class VtuReader {
       return decode_vtk_base64_array(array.text, m_header, m_compressed, static_cast<std::size_t>(expected), m_source,
                                      array.location());
     }
-    if (!m_doc.appended) fail(array, "format=\"appended\" but the file has no <AppendedData encoding=\"raw\">");
+    if (!m_doc.appended) fail(array, "format=\"appended\" but the file has no <AppendedData>");
     const auto [begin, end] = *m_doc.appended;
     const std::string offset_text = attribute(array, "offset");
     std::int64_t offset = 0;
@@ -246,6 +247,10 @@ class VtuReader {
            "offset '" + offset_text + "' is outside the appended data (" + std::to_string(end - begin) + " bytes)");
     }
     const std::size_t start = begin + static_cast<std::size_t>(offset);
+    if (m_appended_base64) {
+      return decode_vtk_appended_base64(m_bytes.substr(start, end - start), m_header, m_compressed,
+                                        static_cast<std::size_t>(expected), m_source, array.location());
+    }
     return decode_vtk_array(m_bytes.substr(start, end - start), m_header, m_compressed,
                             static_cast<std::size_t>(expected), m_source, start);
   }
@@ -403,6 +408,7 @@ class VtuReader {
   XmlDocument m_doc;
   VtkHeaderType m_header = VtkHeaderType::uint32;
   bool m_compressed = false;
+  bool m_appended_base64 = false;
 };
 
 }  // namespace

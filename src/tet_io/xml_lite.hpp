@@ -29,8 +29,8 @@ struct XmlElement {
 
 struct XmlDocument {
   XmlElement root;
-  /// Byte range of the raw appended data (the bytes after '_' up to "</AppendedData>"), when the file has
-  /// an <AppendedData encoding="raw"> block; the element itself is in the tree, without children.
+  /// Byte range of the appended data (the bytes after '_' up to "</AppendedData>"), when the file has
+  /// an <AppendedData> block; the element itself is in the tree, without children.
   std::optional<std::pair<std::size_t, std::size_t>> appended;
 };
 

@@ -21,11 +21,14 @@ s = vtk.vtkDoubleArray(); s.SetName('shrinkage')
 for v in [0.125, 0.75]: s.InsertNextValue(v)
 g.GetCellData().AddArray(s)
 for name, mode, comp, hdr in [('vtk_ascii', 'ascii', False, 64), ('vtk_binary_zlib_uint32', 'binary', True, 32),
-                              ('vtk_appended_raw', 'appended', False, 64), ('vtk_appended_zlib', 'appended', True, 64)]:
+                              ('vtk_appended_raw', 'appended', False, 64), ('vtk_appended_zlib', 'appended', True, 64),
+                              ('vtk_appended_base64', 'appended64', False, 64),
+                              ('vtk_appended_base64_zlib_uint32', 'appended64', True, 32)]:
     w = vtk.vtkXMLUnstructuredGridWriter()
     w.SetFileName(name + '.vtu'); w.SetInputData(g)
-    {'ascii': w.SetDataModeToAscii, 'binary': w.SetDataModeToBinary, 'appended': w.SetDataModeToAppended}[mode]()
-    w.SetEncodeAppendedData(False)
+    {'ascii': w.SetDataModeToAscii, 'binary': w.SetDataModeToBinary, 'appended': w.SetDataModeToAppended,
+     'appended64': w.SetDataModeToAppended}[mode]()
+    w.SetEncodeAppendedData(mode == 'appended64')  # VTK's default is base64-encoded appended data
     w.SetCompressorTypeToZLib() if comp else w.SetCompressorTypeToNone()
     w.SetHeaderTypeToUInt64() if hdr == 64 else w.SetHeaderTypeToUInt32()
     w.Write()
