@@ -121,12 +121,14 @@ struct RawField {
   int components = 1;
   std::vector<std::uint64_t> tags;
   std::vector<double> values;  // components per tag
+  std::size_t position = 0;    // byte offset of the section's first line, for error locations
 };
 
 struct RawTet {
   std::uint64_t tag;
   std::array<std::uint64_t, 4> nodes;
   int label;
+  std::size_t position;  // byte offset of the element in the file, for error locations
 };
 
 class GmshReader {
@@ -438,6 +440,7 @@ class GmshReader {
           continue;
         }
         RawTet tet{};
+        tet.position = m_in.position();
         tet.tag = static_cast<std::uint64_t>(m_in.integer("element tag", 1, INT64_MAX));
         for (auto& n : tet.nodes) n = static_cast<std::uint64_t>(m_in.integer("tet node tag", 1, INT64_MAX));
         if (!m_in.at_line_end()) m_in.fail("a linear tet (type 4) has more than 4 nodes");
@@ -477,6 +480,7 @@ class GmshReader {
       const int label = label_of_entity(entity);
       for (std::uint64_t e = 0; e < count; ++e) {
         RawTet tet{};
+        tet.position = m_in.position();
         tet.tag = m_in.binary<std::uint64_t>("element tag");
         for (auto& n : tet.nodes) n = m_in.binary<std::uint64_t>("tet node tag");
         tet.label = label;
@@ -493,7 +497,9 @@ class GmshReader {
     const std::int64_t total = m_in.integer("element count", 0, INT64_MAX);
     check_count(static_cast<std::uint64_t>(total), 8, "element");
     for (std::int64_t e = 0; e < total; ++e) {
+      m_in.skip_whitespace();
       RawTet tet{};
+      tet.position = m_in.position();
       tet.tag = static_cast<std::uint64_t>(m_in.integer("element tag", 1, INT64_MAX));
       const int type = static_cast<int>(m_in.integer("element type", 1, INT32_MAX));
       const std::int64_t tag_count = m_in.integer("element tag count", 0, 64);
@@ -518,6 +524,8 @@ class GmshReader {
   void read_data(bool on_nodes) {
     RawField field;
     field.on_nodes = on_nodes;
+    m_in.skip_whitespace();
+    field.position = m_in.position();
     const std::int64_t string_count = m_in.integer("string tag count", 0, 1000);
     for (std::int64_t i = 0; i < string_count; ++i) {
       m_in.skip_whitespace();
@@ -567,7 +575,7 @@ class GmshReader {
   }
 
   /// Stores the data sections that give a scalar or 3-vector for every node (every tet); others are skipped.
-  void build_fields(TetMesh& mesh) const {
+  void build_fields(TetMesh& mesh) {
     for (const RawField& raw : m_fields) {
       if (raw.components != 1 && raw.components != 3) continue;
       const std::size_t count = raw.on_nodes ? mesh.vertex_count() : mesh.tet_count();
@@ -578,8 +586,8 @@ class GmshReader {
         if (raw.on_nodes) {
           const auto it = m_node_index.find(raw.tags[e]);
           if (it == m_node_index.end()) {
-            throw InputError(m_in.source(), "$NodeData '" + raw.name + "'",
-                             "node tag " + std::to_string(raw.tags[e]) + " is not defined in $Nodes");
+            fail_at(raw.position, "$NodeData '" + raw.name + "' gives a value for node tag " +
+                                      std::to_string(raw.tags[e]) + ", which $Nodes does not define");
           }
           index = static_cast<std::size_t>(it->second);
         } else {
@@ -602,6 +610,12 @@ class GmshReader {
     }
   }
 
+  /// Fails at byte `position` of the file ("line N" in text files, "byte N" in binary ones).
+  [[noreturn]] void fail_at(std::size_t position, const std::string& problem) {
+    m_in.seek(position);
+    m_binary ? m_in.fail_binary(problem) : m_in.fail(problem);
+  }
+
   TetMesh build() {
     std::stable_sort(m_tets.begin(), m_tets.end(), [](const RawTet& a, const RawTet& b) { return a.tag < b.tag; });
     if (m_tets.size() > static_cast<std::size_t>(max_index)) m_in.fail("more than 2^31-1 tets");
@@ -612,15 +626,14 @@ class GmshReader {
     bool labelled = false;
     for (std::size_t i = 0; i < m_tets.size(); ++i) {
       const RawTet& raw = m_tets[i];
-      if (i > 0 && raw.tag == m_tets[i - 1].tag) {
-        throw InputError(m_in.source(), "element " + std::to_string(raw.tag), "element tag is used twice");
-      }
+      if (i > 0 && raw.tag == m_tets[i - 1].tag)
+        fail_at(raw.position, "element tag " + std::to_string(raw.tag) + " is used twice");
       Tet tet;
       for (int k = 0; k < 4; ++k) {
         const auto it = m_node_index.find(raw.nodes[k]);
         if (it == m_node_index.end()) {
-          throw InputError(m_in.source(), "element " + std::to_string(raw.tag),
-                           "node tag " + std::to_string(raw.nodes[k]) + " is not defined in $Nodes");
+          fail_at(raw.position, "element " + std::to_string(raw.tag) + " uses node tag " +
+                                    std::to_string(raw.nodes[k]) + ", which $Nodes does not define");
         }
         tet[k] = it->second;
       }
