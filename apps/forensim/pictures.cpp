@@ -1,0 +1,98 @@
+#include "pictures.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "core/error.hpp"
+#include "geometry/bounding_box.hpp"
+#include "image/png_io.hpp"
+#include "render/renderer.hpp"
+
+namespace forensim::cli {
+
+SurfaceMaterial material_from_name(const std::string& name, const TriMesh& mesh, std::shared_ptr<const Image> texture) {
+  if (name == "skin") return SurfaceMaterial::skin();
+  if (name == "bone") return SurfaceMaterial::bone();
+  if (name == "clay") return SurfaceMaterial::clay();
+  if (name == "vertex") {
+    if (!mesh.has_colors()) throw Error("material 'vertex': the mesh has no vertex colours", ErrorKind::usage);
+    SurfaceMaterial m = SurfaceMaterial::clay();
+    m.colour_source = ColourSource::vertex_colours;
+    m.base_colour = Vec3f::Ones();
+    return m;
+  }
+  if (name == "texture") {
+    if (!texture || !mesh.has_uvs()) {
+      throw Error("material 'texture': the mesh has no readable base colour texture or no UVs", ErrorKind::usage);
+    }
+    SurfaceMaterial m = SurfaceMaterial::skin(Vec3f::Ones());
+    m.colour_source = ColourSource::texture;
+    m.base_texture = std::move(texture);
+    return m;
+  }
+  if (name.rfind("field:", 0) == 0) {
+    const std::string field = name.substr(6);
+    auto it = mesh.vertex_fields.scalars.find(field);
+    if (it == mesh.vertex_fields.scalars.end() || it->second.empty()) {
+      throw Error("material '" + name + "': the mesh has no per-vertex field '" + field + "'", ErrorKind::usage);
+    }
+    const auto [lo, hi] = std::minmax_element(it->second.begin(), it->second.end());
+    return SurfaceMaterial::field(field, *lo, *hi > *lo ? *hi : *lo + 1.0);
+  }
+  throw Error("unknown material '" + name + "' (use skin, bone, clay, vertex, texture or field:NAME)",
+              ErrorKind::usage);
+}
+
+SurfaceMaterial default_material(const TriMesh& mesh, std::shared_ptr<const Image> texture) {
+  if (texture && mesh.has_uvs()) return material_from_name("texture", mesh, std::move(texture));
+  if (mesh.has_colors()) return material_from_name("vertex", mesh);
+  return SurfaceMaterial::clay();
+}
+
+std::shared_ptr<const Image> load_base_texture(const TriMesh& mesh) {
+  const std::string& path = mesh.material.base_color_texture;
+  if (path.empty()) return nullptr;
+  try {
+    return std::make_shared<const Image>(read_png(path));
+  } catch (const Error& e) {
+    spdlog::warn("texture {} not used: {}", path, e.what());
+    return nullptr;
+  }
+}
+
+Scene skin_over_bone_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone,
+                           double skin_opacity, const ViewAxes& axes) {
+  Scene scene;
+  scene.environment.up = axes.up;
+  scene.add(std::move(bone), SurfaceMaterial::bone(), "bone");
+  SurfaceMaterial skin_material = SurfaceMaterial::skin();
+  skin_material.opacity = skin_opacity;
+  scene.add(std::move(skin), skin_material, "skin");
+  return scene;
+}
+
+Scene cutaway_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone, const Vec3& cut_normal,
+                    const ViewAxes& axes) {
+  Scene scene;
+  scene.environment.up = axes.up;
+  const BoundingBox box = bounding_box(skin->positions);
+  scene.add(std::move(bone), SurfaceMaterial::bone(), "bone");
+  scene.add(std::move(skin), SurfaceMaterial::skin(), "skin");
+  scene.cutaway = CutPlane{box.center(), cut_normal.normalized()};
+  return scene;
+}
+
+Image render_view(Scene scene, const RenderSettings& settings, const std::string& view, const ViewAxes& axes) {
+  FramingOptions framing;
+  framing.axes = axes;
+  scene.environment.up = axes.up;
+  scene.frame(view_from_name(view), static_cast<double>(settings.width) / settings.height, framing);
+  return render(scene, settings);
+}
+
+ViewAxes axes_from_name(const std::string& name) {
+  if (name == "lps") return ViewAxes{};
+  if (name == "yup") return ViewAxes{Vec3::UnitY(), Vec3::UnitZ()};
+  throw Error("unknown axes '" + name + "' (use lps or yup)", ErrorKind::usage);
+}
+
+}  // namespace forensim::cli

@@ -1,0 +1,44 @@
+#pragma once
+/// Scene recipes the CLI uses for its pictures: a surface alone, skin semi-transparent over bone, a
+/// cut-away through skin and bone, and material choices by name.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/tri_mesh.hpp"
+#include "image/image.hpp"
+#include "render/render_settings.hpp"
+#include "render/scene.hpp"
+
+namespace forensim::cli {
+
+/// A material by name: "skin", "bone", "clay", "vertex" (vertex colours), "texture" (the mesh's base colour
+/// texture through its UVs, which must be loaded into `texture`), or "field:NAME" (a per-vertex scalar
+/// field through viridis over its range). Throws a usage Error for other names.
+SurfaceMaterial material_from_name(const std::string& name, const TriMesh& mesh,
+                                   std::shared_ptr<const Image> texture = nullptr);
+
+/// The material a mesh suggests: its texture when it has one loaded, vertex colours when it has them, clay else.
+SurfaceMaterial default_material(const TriMesh& mesh, std::shared_ptr<const Image> texture = nullptr);
+
+/// Loads a mesh's base colour texture (PNG/JPEG/EXR file referenced by its material), or null when it has
+/// none or it cannot be read (a warning is logged).
+std::shared_ptr<const Image> load_base_texture(const TriMesh& mesh);
+
+/// Scene of skin (semi-transparent at `skin_opacity`) over bone, framed from `view`.
+Scene skin_over_bone_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone,
+                           double skin_opacity, const ViewAxes& axes);
+
+/// Scene of skin and bone cut by the plane through the skin's centre with normal `cut_normal` (the side the
+/// normal points to is removed), showing bone inside flesh.
+Scene cutaway_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone, const Vec3& cut_normal,
+                    const ViewAxes& axes);
+
+/// Renders `scene` from the named view (framed around the scene).
+Image render_view(Scene scene, const RenderSettings& settings, const std::string& view, const ViewAxes& axes);
+
+/// Axes by name: "lps" (CT: z up, -y front) or "yup" (glTF/OBJ heads: y up, +z front).
+ViewAxes axes_from_name(const std::string& name);
+
+}  // namespace forensim::cli

@@ -1,0 +1,31 @@
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+#include "cli/cli_runner.hpp"
+#include "core/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+
+// End to end: the demo runs on built-in defaults (and shared data when present) and writes a report with
+// pictures and a run record.
+TEST(Demo, WritesReportWithPicturesAndTimings) {
+  const auto dir = test::scratch_dir("demo");
+  const auto result = test::run_cli("demo --out " + dir.string() + " --picture-size 128 --samples 2");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::string html = read_file(dir / "report.html");
+  EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(html.find("Timings"), std::string::npos);
+  EXPECT_EQ(html.find("failed"), std::string::npos) << "a demo stage failed; see the report";
+  const auto record = nlohmann::json::parse(read_file(dir / "run.json"));
+  EXPECT_EQ(record["command"], "demo");
+  EXPECT_TRUE(record["facts"]["ct_phantom"]["skin_closed"].get<bool>());
+  EXPECT_TRUE(record["facts"]["ct_phantom"]["bone_closed"].get<bool>());
+  if (!test::data_path("ct-head-headsq/quarter.nhdr").empty()) {
+    EXPECT_TRUE(record["facts"]["ct_headsq"]["skin_closed"].get<bool>());
+    EXPECT_TRUE(record["facts"]["ct_headsq"]["bone_closed"].get<bool>());
+  }
+}

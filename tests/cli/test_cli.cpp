@@ -1,0 +1,100 @@
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli/cli_runner.hpp"
+#include "core/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+using test::run_cli;
+
+namespace {
+// A closed unit-cube OBJ (mm), 12 triangles.
+void write_cube_obj(const std::filesystem::path& path, double size) {
+  std::ofstream out(path);
+  const double s = size;
+  out << "v 0 0 0\nv " << s << " 0 0\nv " << s << " " << s << " 0\nv 0 " << s << " 0\n"
+      << "v 0 0 " << s << "\nv " << s << " 0 " << s << "\nv " << s << " " << s << " " << s << "\nv 0 " << s << " " << s
+      << "\n"
+      << "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+}
+
+// Width and height from a PNG's IHDR chunk.
+std::pair<int, int> png_size(const std::filesystem::path& path) {
+  const std::string bytes = read_file(path);
+  auto be32 = [&](std::size_t o) {
+    return (static_cast<unsigned char>(bytes[o]) << 24) | (static_cast<unsigned char>(bytes[o + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[o + 2]) << 8) | static_cast<unsigned char>(bytes[o + 3]);
+  };
+  if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {0, 0};
+  return {be32(16), be32(20)};
+}
+}  // namespace
+
+TEST(Cli, VersionAndHelp) {
+  const auto version = run_cli("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_NE(version.output.find("forensim 0."), std::string::npos) << version.output;
+  const auto help = run_cli("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* command : {"info", "convert", "isosurface", "render", "phantom", "demo"}) {
+    EXPECT_NE(help.output.find(command), std::string::npos) << command;
+  }
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(run_cli("no-such-command").exit_code, 2);
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("isosurface -o x.ply").exit_code, 2);  // --iso missing
+  EXPECT_EQ(run_cli("render --size 5 a.obj -o a.png").exit_code, 2);
+}
+
+TEST(Cli, MissingFileIsAnIoErrorNamingThePath) {
+  const auto result = run_cli("info /nonexistent/skull.obj");
+  EXPECT_EQ(result.exit_code, 5);
+  EXPECT_NE(result.output.find("/nonexistent/skull.obj"), std::string::npos) << result.output;
+}
+
+TEST(Cli, GarbageMeshIsAnInputErrorAndWritesNothing) {
+  const auto dir = test::scratch_dir("cli");
+  write_file_atomic(dir / "garbage.ply",
+                    std::string("ply\nformat ascii 1.0\nelement vertex 99999999999\nend_header\n1 2"));
+  const auto result = run_cli("convert " + (dir / "garbage.ply").string() + " " + (dir / "out.obj").string());
+  EXPECT_EQ(result.exit_code, 3) << result.output;
+  EXPECT_NE(result.output.find("garbage.ply"), std::string::npos) << result.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.obj"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);  // no temporary left behind
+}
+
+TEST(Cli, ConvertRoundTripKeepsTheMesh) {
+  const auto dir = test::scratch_dir("cli");
+  write_cube_obj(dir / "cube.obj", 20.0);
+  ASSERT_EQ(run_cli("convert " + (dir / "cube.obj").string() + " " + (dir / "cube.ply").string()).exit_code, 0);
+  const auto info = run_cli("info --json " + (dir / "cube.ply").string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  const auto json = nlohmann::json::parse(info.output);
+  EXPECT_EQ(json["triangles"], 12);
+  EXPECT_EQ(json["closed"], true);
+  EXPECT_NEAR(json["enclosed_volume_mm3"].get<double>(), 8000.0, 1e-3);
+}
+
+TEST(Cli, RenderWritesAPictureOfTheRequestedSize) {
+  const auto dir = test::scratch_dir("cli");
+  write_cube_obj(dir / "cube.obj", 20.0);
+  const auto result = run_cli("render " + (dir / "cube.obj").string() + " -o " + (dir / "cube.png").string() +
+                              " --size 64 --samples 1");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(png_size(dir / "cube.png"), std::make_pair(64, 64));
+}
+
+TEST(Cli, IsosurfaceOfThePhantomIsClosed) {
+  const auto dir = test::scratch_dir("cli");
+  const auto result = run_cli("isosurface --phantom-voxel 6 --iso 500 -o " + (dir / "skin.ply").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("closed, manifold, oriented"), std::string::npos) << result.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "skin.ply"));
+}
