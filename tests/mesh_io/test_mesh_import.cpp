@@ -66,6 +66,41 @@ TEST(MeshImport, ResultIsWeldedAndClosed) {
   EXPECT_TRUE(r.is_oriented());
 }
 
+// Legal but less common spellings must pass the hostile-input pre-checks and import.
+TEST(MeshImport, UncommonValidFilesPassThePreChecks) {
+  const auto dir = test::scratch_dir("variants");
+  const MeshImportOptions mm{"mm", 0.0};
+  // ASCII STL.
+  write_file_atomic(dir / "ascii.stl",
+                    "solid tri\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 30 0 0\n"
+                    "   vertex 0 30 0\n  endloop\n endfacet\nendsolid tri\n");
+  EXPECT_EQ(import_mesh(dir / "ascii.stl", mm).triangle_count(), 1u);
+  // OBJ with negative (relative) indices, v//vn corners, a quad, comments and a forward reference.
+  write_file_atomic(dir / "relative.obj",
+                    "# comment\nv 0 0 0\nv 30 0 0 # trailing comment\nv 30 30 0\nvn 0 0 1\n"
+                    "f -3//1 -2//1 -1//1\nf 1 3 4\nv 0 30 0\nf 1 2 3 4\n");
+  EXPECT_EQ(import_mesh(dir / "relative.obj", mm).triangle_count(), 4u);
+  // Big-endian binary PLY with a uint list count and a double coordinate type.
+  std::string ply =
+      "ply\nformat binary_big_endian 1.0\ncomment big\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
+  const auto put_be = [&ply](const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) ply.push_back(static_cast<const char*>(p)[n - 1 - i]);
+  };
+  for (const double v : {0.0, 0.0, 0.0, 30.0, 0.0, 0.0, 0.0, 30.0, 0.0}) put_be(&v, 8);
+  for (const std::uint32_t v : {3u, 0u, 1u, 2u}) put_be(&v, 4);
+  write_file_atomic(dir / "big.ply", ply);
+  const TriMesh big = import_mesh(dir / "big.ply", mm);
+  ASSERT_EQ(big.triangle_count(), 1u);
+  EXPECT_NEAR(bounding_box(big.positions).max[0], 30.0, 1e-9);
+  // ASCII PLY with signed and exponent notation.
+  write_file_atomic(dir / "ascii.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "-0 +0 .5\n3e1 0 0.5\n0 30.0 5e-1\n3 0 1 2\n");
+  EXPECT_EQ(import_mesh(dir / "ascii.ply", mm).triangle_count(), 1u);
+}
+
 TEST(MeshImport, ValidCorpusControlFileImports) {
   const TriMesh mesh = import_mesh(corpus("valid_triangle.glb"), {"mm", 0.0});
   EXPECT_EQ(mesh.triangle_count(), 1u);
