@@ -11,15 +11,14 @@
 namespace forensim {
 
 /// Reads a single-piece .vtu of tetrahedra (VTK_TETRA, type 10). Supported: format="ascii",
-/// format="binary" (inline base64) and format="appended" with <AppendedData encoding="raw"> or "base64" (VTK's
-/// default); header_type
-/// UInt32 or UInt64 (UInt32 when absent, as in version 0.1); no compressor or vtkZLibDataCompressor;
-/// little-endian; any integer or floating DataArray type. Point and cell arrays with 1 component become
-/// scalar fields, with 3 components vector fields; the integer cell array "label" becomes tet_labels.
-/// Rejected with InputError(path, "line N" or "byte N", problem): other cell types, several pieces,
-/// big-endian data, other compressors (LZ4, LZMA), arrays with other component counts, and every
-/// malformed input (counts not matching the data, truncated or corrupt blocks, bad base64, non-finite
-/// points, NaN fields, indices out of range). Throws IoError when the file cannot be read.
+/// format="binary" (inline base64) and format="appended" with <AppendedData encoding="raw"> or "base64"
+/// (VTK's default); header_type UInt32 or UInt64 (UInt32 when absent, as in version 0.1); no compressor or
+/// vtkZLibDataCompressor; little-endian; any integer or floating DataArray type. Point and cell arrays with 1 component
+/// become scalar fields, with 3 components vector fields; the integer cell array "label" becomes tet_labels. Rejected
+/// with InputError(path, "line N" or "byte N", problem): other cell types, several pieces, big-endian data, other
+/// compressors (LZ4, LZMA), arrays with other component counts, and every malformed input (counts not matching the
+/// data, truncated or corrupt blocks, bad base64, non-finite points, NaN fields, indices out of range). Throws IoError
+/// when the file cannot be read.
 TetMesh read_vtu(const std::filesystem::path& path);
 /// read_vtu on file contents already in memory; `source` names them in errors.
 TetMesh parse_vtu(std::string_view bytes, const std::string& source);
