@@ -7,7 +7,7 @@ find_package(TBB REQUIRED CONFIG)                           # TBB::tbb
 find_package(embree 3 REQUIRED)                             # embree
 find_package(CGAL REQUIRED)                                 # CGAL::CGAL
 find_package(assimp REQUIRED)                               # assimp::assimp
-find_package(TinyGLTF REQUIRED)                             # TinyGLTF::TinyGLTF (header)
+find_package(TinyGLTF REQUIRED)                             # TinyGLTF::TinyGLTF (shared library; see src/mesh_io/tinygltf_implementation.cpp)
 find_package(PNG REQUIRED)                                  # PNG::PNG
 find_package(ZLIB REQUIRED)                                 # ZLIB::ZLIB
 find_package(TIFF REQUIRED)                                 # TIFF::TIFF

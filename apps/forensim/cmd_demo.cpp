@@ -105,8 +105,9 @@ void ct_section(DemoContext& ctx, const ScalarGrid& grid, const std::string& nam
                    "skin (semi-transparent) over bone, front"});
   cells.push_back({render_view(skin_over_bone_scene(skin, bone, 0.3, axes), ctx.settings, "three_quarter", axes),
                    "three-quarter view"});
-  cells.push_back({render_view(cutaway_scene(skin, bone, axes.left(), axes), ctx.settings, "right", axes),
-                   "mid-sagittal cut-away"});
+  // The cut removes the subject's left half; the camera looks at the cut from that side.
+  cells.push_back(
+      {render_view(cutaway_scene(skin, bone, axes.left(), axes), ctx.settings, "left", axes), "mid-sagittal cut-away"});
   ctx.picture(make_sheet(cells, 3, name), file_stem + "_surfaces.png", name + ": skin and bone surfaces");
   ctx.timed(name + ": pictures", watch.seconds());
 }
@@ -130,16 +131,17 @@ void phantom_section(DemoContext& ctx, const std::string& name) {
   cells.push_back({render_view(plain, ctx.settings, arm ? "top" : "front", axes), arm ? "back of the hand" : "front"});
   cells.push_back({render_view(plain, ctx.settings, arm ? "front" : "left", axes), arm ? "thumb side" : "side"});
   cells.push_back({render_view(cutaway_scene(skin, bone, arm ? Vec3(Vec3::UnitZ()) : axes.left(), axes), ctx.settings,
-                               arm ? "top" : "right", axes),
+                               arm ? "top" : "left", axes),
                    "cut-away: bone inside flesh"});
   ctx.picture(make_sheet(cells, 3, "phantom: " + name), "phantom_" + name + ".png", "Built-in phantom '" + name + "'");
   ctx.timed("phantom " + name + ": pictures", watch.seconds());
 }
 
+// `mm_per_unit` scales files in arbitrary units (0 = the file's own unit).
 void scan_section(DemoContext& ctx, const std::filesystem::path& path, const std::string& name, const ViewAxes& axes,
-                  const std::string& view) {
+                  const std::string& view, double mm_per_unit) {
   Stopwatch watch;
-  TriMesh mesh = import_mesh(path);
+  TriMesh mesh = import_mesh(path, {"auto", mm_per_unit});
   const TopologyReport before = check_topology(mesh);
   RepairOptions options;
   options.max_hole_edges = 200;
@@ -227,11 +229,12 @@ int run_demo(const DemoArgs& a) {
       report.section("Real scans: import and repair",
                      "Scanned meshes imported through Assimp in millimetres, then repaired (duplicates, degenerate "
                      "triangles, orientation, holes) on CGAL.");
+      // Arbitrary units, 0.94 units tall (its SOURCE.md): scaled to a 190 mm hand.
       scan_section(ctx, data / "hand-mesh" / "hand_closed.obj", "Hand scan", ViewAxes{Vec3::UnitY(), Vec3::UnitZ()},
-                   "front");
+                   "front", 200.0);
       if (std::filesystem::exists(data / "head-busts" / "nefertiti-lowres.obj")) {
         scan_section(ctx, data / "head-busts" / "nefertiti-lowres.obj", "Nefertiti bust",
-                     ViewAxes{Vec3::UnitZ(), -Vec3::UnitY()}, "three_quarter");
+                     ViewAxes{Vec3::UnitY(), Vec3::UnitZ()}, "three_quarter", 0.0);
       }
     });
   }
