@@ -247,3 +247,14 @@ TEST(GmshIo, NodesWithoutTetsRoundTrip) {
   write_gmsh(path, empty);
   EXPECT_EQ(read_gmsh(path).vertex_count(), 0u);
 }
+
+TEST(GmshIo, WindowsLineEndingsReadTheSame) {
+  std::string crlf;
+  for (char c : std::string(hand_written_41)) {
+    if (c == '\n') crlf += '\r';
+    crlf += c;
+  }
+  const TetMesh mesh = parse_gmsh(crlf, "crlf.msh");
+  const TetMesh reference = parse_gmsh(hand_written_41, "lf.msh");
+  test::expect_same_geometry(reference, mesh);
+}

@@ -69,3 +69,11 @@ TEST(TetgenIo, MissingEleIsIoError) {
   test::spit(dir / "t.node", "1 3 0 0\n1 0 0 0\n");
   EXPECT_THROW(read_tetgen(dir / "t"), IoError);
 }
+
+TEST(TetgenIo, WindowsLineEndingsReadTheSame) {
+  const TetMesh mesh = parse_tetgen("# nodes\r\n4 3 0 1\r\n1 0 0 0 5\r\n2 1 0 0 5\r\n3 0 1 0 6\r\n4 0 0 1 6\r\n",
+                                    "1 4 1\r\n1 1 2 3 4 1\r\n", "crlf.node", "crlf.ele");
+  ASSERT_EQ(mesh.tet_count(), 1u);
+  EXPECT_EQ(mesh.label(0), tissue_bone);
+  EXPECT_EQ(mesh.vertex_fields.scalars.at("boundary_marker")[2], 6.0);
+}
