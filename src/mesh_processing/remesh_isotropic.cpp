@@ -6,7 +6,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #pragma GCC diagnostic pop
 
-#include <boost/function_output_iterator.hpp>
+#include <boost/iterator/function_output_iterator.hpp>
 #include <cmath>
 #include <vector>
 

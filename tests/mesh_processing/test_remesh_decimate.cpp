@@ -65,8 +65,8 @@ TEST(RemeshIsotropic, RejectsBadTarget) {
 
 TEST(Decimate, SphereReachesTargetWithSmallError) {
   const double radius = 10.0;
-  const TriMesh sphere = make_icosphere(Vec3::Zero(), radius, 5);  // 20480 triangles
-  const std::size_t target = 2000;
+  const TriMesh sphere = make_icosphere(Vec3::Zero(), radius, 4);  // 5120 triangles
+  const std::size_t target = 1000;
   const TriMesh coarse = decimate(sphere, target);
   EXPECT_LE(coarse.triangle_count(), target);
   EXPECT_GE(coarse.triangle_count(), target - 2);
@@ -79,7 +79,7 @@ TEST(Decimate, SphereReachesTargetWithSmallError) {
     const Vec3 c = (coarse.positions[tri[0]] + coarse.positions[tri[1]] + coarse.positions[tri[2]]) / 3.0;
     worst = std::max(worst, std::abs(c.norm() - radius));
   }
-  // A uniform 2000-triangle icosphere-like mesh has edges ~0.8 R/sqrt(...)~1.6 and centroid sag ~0.04 R.
+  // A uniform 1000-triangle sphere mesh has centroids about 0.02 R inside the sphere; allow twice that and more.
   EXPECT_LT(worst, 0.05 * radius);
   EXPECT_NEAR(enclosed_volume(coarse), enclosed_volume(sphere), 0.03 * enclosed_volume(sphere));
   EXPECT_EQ(coarse.normals.size(), coarse.positions.size());
