@@ -273,7 +273,9 @@ TetMesh parse_tetgen(std::string_view node_bytes, std::string_view ele_bytes, co
   return mesh;
 }
 
-void write_tetgen(const std::filesystem::path& basename, const TetMesh& mesh) {
+void write_tetgen(const std::filesystem::path& basename_or_file, const TetMesh& mesh) {
+  std::filesystem::path basename = basename_or_file;
+  if (basename.extension() == ".node" || basename.extension() == ".ele") basename.replace_extension();
   mesh.validate("mesh written to " + basename.string());
   const auto marker_it = mesh.vertex_fields.scalars.find("boundary_marker");
   bool markers = marker_it != mesh.vertex_fields.scalars.end();

@@ -29,7 +29,8 @@ TetMesh read_tetgen(const std::filesystem::path& node_or_ele_or_basename);
 TetMesh parse_tetgen(std::string_view node_bytes, std::string_view ele_bytes, const std::string& node_source,
                      const std::string& ele_source);
 
-/// Writes `<basename>.node` and `<basename>.ele` (each atomically), 1-based like TetGen's own output.
+/// Writes `<basename>.node` and `<basename>.ele` (each atomically), 1-based like TetGen's own output; a
+/// `basename` ending in .node or .ele names the pair too.
 /// Positions and fields are written exactly (shortest round-trip decimals). Vertex scalar and vector fields
 /// become node attributes (a vertex field "boundary_marker" with integral values becomes the boundary
 /// marker column instead); the tet label is the region attribute, followed by tet scalar and vector fields.

@@ -64,6 +64,15 @@ TEST(TetgenIo, RejectsIndexOutOfRangeWithLine) {
   }
 }
 
+TEST(TetgenIo, WritingToANodePathWritesThePair) {
+  const TetMesh mesh = sample_tet_mesh(1, 1, 1);
+  const auto dir = test::scratch_dir("tetgen");
+  write_tetgen(dir / "pair.node", mesh);
+  EXPECT_TRUE(std::filesystem::exists(dir / "pair.ele"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "pair.node.node"));
+  test::expect_same_geometry(mesh, read_tetgen(dir / "pair"));
+}
+
 TEST(TetgenIo, MissingEleIsIoError) {
   const auto dir = test::scratch_dir("tetgen");
   test::spit(dir / "t.node", "1 3 0 0\n1 0 0 0\n");
