@@ -106,10 +106,9 @@ std::int64_t read_node_file(std::string_view bytes, const std::string& source, T
   if (header.empty()) in.fail("empty .node file");
   if (header.size() < 2) in.fail(".node header needs at least '<#nodes> <dimension>'");
   const std::int64_t count = in.integer(header[0], "node count", 0, INT32_MAX);
-  const std::int64_t dimension = in.integer(header[1], "dimension", 3, 3);
+  in.integer(header[1], "dimension", 3, 3);  // volume meshes only
   const std::int64_t attribute_count = header.size() > 2 ? in.integer(header[2], "attribute count", 0, 1000) : 0;
   const std::int64_t markers = header.size() > 3 ? in.integer(header[3], "boundary marker flag", 0, 1) : 0;
-  (void)dimension;
   const std::size_t columns = 4 + static_cast<std::size_t>(attribute_count + markers);
   // Every value takes at least 2 bytes ("0 "), so the declared table must fit in what is left.
   if (static_cast<std::uint64_t>(count) > in.remaining() / (2 * columns)) {
