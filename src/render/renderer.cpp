@@ -175,44 +175,47 @@ double ggx_specular(const Vec3& n, const Vec3& v, const Vec3& l, double roughnes
   return d * vis * f;
 }
 
-// Per-pixel sample generator: a jittered grid for the pixel position and, for every other 2D
-// dimension, the R2 low-discrepancy sequence (Roberts 2018) with a per-pixel random rotation and
-// sample order, so light and occlusion samples are stratified and uncorrelated with each other.
+// Per-pixel sample generator: every 2D dimension (the sub-pixel position, each light, the occlusion
+// ray) uses the R2 low-discrepancy sequence (Roberts 2018), well stratified for any sample count, with
+// a per-pixel random rotation and, for all but the pixel position, a per-pixel random sample order so
+// the dimensions are not correlated with each other. Buffers are reused per thread.
 class PixelSampler {
  public:
   PixelSampler(std::uint64_t seed, std::uint64_t pixel, int samples, int dimensions)
-      : m_rng(seed, pixel), m_samples(samples), m_dimensions(dimensions) {
-    m_offsets.resize(static_cast<std::size_t>(dimensions) * 2);
-    for (double& o : m_offsets) o = m_rng.uniform();
-    m_order.resize(static_cast<std::size_t>(dimensions) * static_cast<std::size_t>(samples));
+      : m_samples(samples), m_dimensions(dimensions) {
+    RandomStream rng(seed, pixel);
+    thread_local std::vector<double> offsets;
+    thread_local std::vector<int> order;
+    offsets.resize(static_cast<std::size_t>(dimensions + 1) * 2);
+    for (double& o : offsets) o = rng.uniform();
+    order.resize(static_cast<std::size_t>(dimensions) * static_cast<std::size_t>(samples));
     for (int d = 0; d < dimensions; ++d) {
-      int* order = m_order.data() + static_cast<std::ptrdiff_t>(d) * samples;
-      for (int i = 0; i < samples; ++i) order[i] = i;
-      for (int i = samples - 1; i > 0; --i) std::swap(order[i], order[m_rng.uniform_int(0, i)]);
+      int* o = order.data() + static_cast<std::ptrdiff_t>(d) * samples;
+      for (int i = 0; i < samples; ++i) o[i] = i;
+      for (int i = samples - 1; i > 0; --i) std::swap(o[i], o[rng.uniform_int(0, i)]);
     }
-    m_grid = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(samples)))));
+    m_offsets = offsets.data();
+    m_order = order.data();
   }
   /// Sub-pixel position of sample s in [0,1)^2.
-  Vec2 pixel(int s) {
-    const int cx = s % m_grid, cy = (s / m_grid) % m_grid;
-    return Vec2((cx + m_rng.uniform()) / m_grid, (cy + m_rng.uniform()) / m_grid);
-  }
+  Vec2 pixel(int s) const { return r2(s, m_offsets[2 * m_dimensions], m_offsets[2 * m_dimensions + 1]); }
   /// Value of 2D dimension d (0-based) for sample s in [0,1)^2.
   Vec2 get(int d, int s) const {
     if (d >= m_dimensions) d = m_dimensions - 1;
-    const int i =
-        m_order[static_cast<std::size_t>(d) * static_cast<std::size_t>(m_samples) + static_cast<std::size_t>(s)];
-    constexpr double a1 = 0.7548776662466927, a2 = 0.5698402909980532;  // 1/g, 1/g^2, g the plastic number
-    const double x = 0.5 + a1 * i + m_offsets[2 * static_cast<std::size_t>(d)];
-    const double y = 0.5 + a2 * i + m_offsets[2 * static_cast<std::size_t>(d) + 1];
-    return Vec2(x - std::floor(x), y - std::floor(y));
+    const int i = m_order[d * m_samples + s];
+    return r2(i, m_offsets[2 * d], m_offsets[2 * d + 1]);
   }
 
  private:
-  RandomStream m_rng;
-  int m_samples, m_dimensions, m_grid = 1;
-  std::vector<double> m_offsets;
-  std::vector<int> m_order;
+  static Vec2 r2(int i, double ox, double oy) {
+    constexpr double a1 = 0.7548776662466927, a2 = 0.5698402909980532;  // 1/g, 1/g^2, g the plastic number
+    const double x = 0.5 + a1 * i + ox, y = 0.5 + a2 * i + oy;
+    return Vec2(x - std::floor(x), y - std::floor(y));
+  }
+
+  int m_samples, m_dimensions;
+  const double* m_offsets;
+  const int* m_order;
 };
 
 }  // namespace
