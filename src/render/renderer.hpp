@@ -18,8 +18,9 @@ namespace forensim {
 /// once in the constructor.
 class Renderer {
  public:
-  /// Validates the scene (meshes, fields, textures) and builds the Embree scene. Meshes are shared with
-  /// the Scene, not copied. Throws InputError for invalid objects (naming the object).
+  /// Validates the scene (meshes, fields, textures) and builds the Embree scene. The Scene description is
+  /// copied but its meshes and textures are shared, not copied; later edits of `scene` do not affect
+  /// this renderer. Throws InputError for invalid objects (naming the object).
   explicit Renderer(const Scene& scene);
   ~Renderer();
   Renderer(const Renderer&) = delete;
