@@ -167,3 +167,23 @@ TEST(RepairMesh, RejectsBadInput) {
   EXPECT_EQ(empty.triangle_count(), 0u);
   EXPECT_EQ(report.holes_found, 0u);
 }
+
+TEST(RepairMesh, SelfIntersectionsAreReported) {
+  TriMesh one = make_box_mesh(Vec3::Zero(), Vec3::Ones(), 1);
+  one.normals.clear();
+  RepairOptions options;
+  options.check_self_intersections = true;
+  TriMesh single = one;
+  const RepairReport clean = repair_mesh(single, options);
+  EXPECT_TRUE(clean.self_intersections_checked);
+  EXPECT_FALSE(clean.self_intersecting);
+  // Two interpenetrating boxes.
+  TriMesh two = one;
+  const Index offset = static_cast<Index>(two.positions.size());
+  for (const Vec3& p : one.positions) two.positions.push_back(p + Vec3(0.5, 0.5, 0.5));
+  for (const Tri& t : one.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const RepairReport crossing = repair_mesh(two, options);
+  EXPECT_TRUE(crossing.self_intersecting);
+  EXPECT_TRUE(crossing.closed());
+  EXPECT_FALSE(crossing.notes.empty());
+}
