@@ -76,6 +76,26 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return Vec3(1.0 - v - w, v, w);
 }
 
+std::optional<ClosestPoint> closest_point(const TriMesh& mesh, const Vec3& point, double max_distance) {
+  require_input(point.allFinite(), "closest point query", "point", "query point is not finite");
+  require_input(max_distance >= 0.0, "closest point query", "max_distance", "max_distance must be >= 0");
+  std::optional<ClosestPoint> best;
+  double best_d2 = std::isinf(max_distance) ? max_distance : max_distance * max_distance;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Tri& tri = mesh.triangles[f];
+    const Vec3& a = mesh.positions[tri[0]];
+    const Vec3& b = mesh.positions[tri[1]];
+    const Vec3& c = mesh.positions[tri[2]];
+    const Vec3 bary = closest_point_on_triangle(point, a, b, c);
+    const Vec3 q = bary[0] * a + bary[1] * b + bary[2] * c;
+    const double d2 = (q - point).squaredNorm();
+    if (d2 > best_d2 || (best && d2 == best_d2)) continue;
+    best = ClosestPoint{static_cast<Index>(f), bary, q, std::sqrt(d2)};
+    best_d2 = d2;
+  }
+  return best;
+}
+
 namespace {
 
 struct QueryState {

@@ -25,6 +25,11 @@ struct ClosestPoint {
 /// triangles are handled (the result is a closest point of the segment or vertex they collapse to).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Closest point of `mesh` to `point` by testing every triangle in double, O(#F): for one-off queries
+/// (build a ClosestPointQuery for more) and as a reference. Same conventions as ClosestPointQuery::query().
+std::optional<ClosestPoint> closest_point(const TriMesh& mesh, const Vec3& point,
+                                          double max_distance = std::numeric_limits<double>::infinity());
+
 /// Setup-once, query-many closest-point search. Uses Embree 3's BVH through rtcPointQuery: Embree culls
 /// triangles whose float bounds lie outside the current search sphere, and a callback measures the exact
 /// double distance with closest_point_on_triangle() and shrinks the sphere (with a margin for float

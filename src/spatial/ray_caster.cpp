@@ -63,6 +63,36 @@ bool ray_triangle_intersect(const Vec3& origin, const Vec3& direction, const Vec
   return true;
 }
 
+std::optional<RayHit> intersect_ray(const TriMesh& mesh, const Vec3& origin, const Vec3& direction, double t_min,
+                                    double t_max, FaceCulling culling) {
+  check_ray(origin, direction, t_min, t_max);
+  std::optional<RayHit> best;
+  double t_best = t_max;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Tri& tri = mesh.triangles[f];
+    const Vec3& a = mesh.positions[tri[0]];
+    const Vec3& b = mesh.positions[tri[1]];
+    const Vec3& c = mesh.positions[tri[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    const double s = direction.dot(n);
+    if ((culling == FaceCulling::back && s > 0.0) || (culling == FaceCulling::front && s < 0.0)) continue;
+    double t = 0.0;
+    Vec3 bary;
+    if (!ray_triangle_intersect(origin, direction, a, b, c, t_min, t_best, t, bary)) continue;
+    if (best && t >= best->t) continue;
+    RayHit hit;
+    hit.triangle = static_cast<Index>(f);
+    hit.barycentric = bary;
+    hit.t = t;
+    hit.point = bary[0] * a + bary[1] * b + bary[2] * c;
+    const double n_norm = n.norm();
+    hit.normal = n_norm > 0.0 ? Vec3(n / n_norm) : Vec3::Zero();
+    best = hit;
+    t_best = t;
+  }
+  return best;
+}
+
 struct RayCaster::Impl {
   explicit Impl(const TriMesh& mesh) : scene(mesh, "ray caster mesh", true) {
     face_normals.reserve(scene.triangles().size());

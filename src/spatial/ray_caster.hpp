@@ -37,6 +37,13 @@ struct RayHit {
 bool ray_triangle_intersect(const Vec3& origin, const Vec3& direction, const Vec3& a, const Vec3& b, const Vec3& c,
                             double t_min, double t_max, double& t, Vec3& barycentric);
 
+/// First hit of one ray by testing every triangle in double, O(#F): for one-off queries (build a RayCaster
+/// for more) and as a reference. Same conventions as RayCaster::intersect(); ties in t go to the lower
+/// triangle index. The mesh is not validated (indices must be in range).
+std::optional<RayHit> intersect_ray(const TriMesh& mesh, const Vec3& origin, const Vec3& direction, double t_min = 0.0,
+                                    double t_max = std::numeric_limits<double>::infinity(),
+                                    FaceCulling culling = FaceCulling::none);
+
 /// Setup-once, query-many ray caster. The constructor copies the mesh (positions and triangles only) and
 /// builds Embree's BVH; queries are const and thread-safe. Embree intersects in float (vertices relative to
 /// the mesh's bounding-box centre); each hit is then refined in double against the triangle Embree found,

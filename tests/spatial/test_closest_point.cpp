@@ -118,3 +118,19 @@ TEST(ClosestPointQuery, EmptyMeshAndBadInput) {
   EXPECT_THROW((void)query.query(Vec3::Zero(), -1.0), InputError);
   EXPECT_FALSE(query.query(Vec3(10, 0, 0), 5.0));
 }
+
+TEST(ClosestPointQuery, FreeFunctionMatchesQuery) {
+  const TriMesh mesh = make_icosphere(Vec3::Zero(), 1.0, 2);
+  const ClosestPointQuery query(mesh);
+  RandomStream rng(35, 0);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+    const auto a = query.query(p, 0.5);
+    const auto b = closest_point(mesh, p, 0.5);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (a) {
+      EXPECT_EQ(a->distance, b->distance);
+      EXPECT_EQ(a->triangle, b->triangle);  // both break ties towards the lower index
+    }
+  }
+}

@@ -209,3 +209,23 @@ TEST(RayCaster, BatchIsIdenticalAtAnyThreadCount) {
     }
   }
 }
+
+TEST(RayCaster, FreeFunctionMatchesCaster) {
+  const TriMesh mesh = make_box_mesh(Vec3(-1, -1, -1), Vec3(1, 1, 1), 2);
+  const RayCaster caster(mesh);
+  RandomStream rng(23, 0);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 o(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+    const Vec3 d = random_unit(rng);
+    for (const FaceCulling culling : {FaceCulling::none, FaceCulling::back, FaceCulling::front}) {
+      const auto a = caster.intersect(o, d, 0.0, 10.0, culling);
+      const auto b = intersect_ray(mesh, o, d, 0.0, 10.0, culling);
+      ASSERT_EQ(a.has_value(), b.has_value());
+      if (a) {
+        EXPECT_NEAR(a->t, b->t, 1e-9);
+        EXPECT_LT((a->point - b->point).norm(), 1e-9);
+        EXPECT_TRUE(a->normal.isApprox(b->normal));
+      }
+    }
+  }
+}
