@@ -43,7 +43,5 @@ class HtmlReport {
 
 /// Escapes &, <, >, " and ' for HTML text and attributes.
 std::string html_escape(const std::string& text);
-/// Standard base64 encoding (RFC 4648, with padding).
-std::string base64_encode(const std::string& bytes);
 
 }  // namespace forensim

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "tet_io/base64.hpp"
+#include "core/base64.hpp"
 
 namespace forensim {
 namespace {

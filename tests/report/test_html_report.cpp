@@ -1,21 +1,11 @@
 #include <gtest/gtest.h>
 
 #include "core/atomic_file.hpp"
+#include "core/base64.hpp"
 #include "report/html_report.hpp"
 #include "support/test_support.hpp"
 
 using namespace forensim;
-
-TEST(HtmlReport, Base64MatchesRfc4648Vectors) {
-  EXPECT_EQ(base64_encode(""), "");
-  EXPECT_EQ(base64_encode("f"), "Zg==");
-  EXPECT_EQ(base64_encode("fo"), "Zm8=");
-  EXPECT_EQ(base64_encode("foo"), "Zm9v");
-  EXPECT_EQ(base64_encode("foob"), "Zm9vYg==");
-  EXPECT_EQ(base64_encode("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(base64_encode("foobar"), "Zm9vYmFy");
-  EXPECT_EQ(base64_encode(std::string("\xff\x00\x10", 3)), "/wAQ");
-}
 
 TEST(HtmlReport, EscapesTextAndEmbedsPictures) {
   HtmlReport report("Run <1>");

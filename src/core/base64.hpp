@@ -1,5 +1,5 @@
 #pragma once
-/// Base64 (RFC 4648, standard alphabet, '=' padding) for VTK XML inline binary data arrays.
+/// Base64 (RFC 4648, standard alphabet, '=' padding): VTK XML inline binary arrays, pictures embedded in HTML.
 
 #include <optional>
 #include <string>

@@ -1,4 +1,4 @@
-#include "tet_io/base64.hpp"
+#include "core/base64.hpp"
 
 #include <array>
 
