@@ -29,7 +29,7 @@ sanitize: deps
 	ctest --preset sanitize
 
 bench: build
-	./build/release/bin/forensim bench all
+	@for b in build/release/bin/forensim_bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
