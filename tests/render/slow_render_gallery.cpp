@@ -119,13 +119,16 @@ TEST(RenderGallery, TimelineSheetAndTurntable) {
   RenderSettings settings;
   settings.width = 200;
   settings.height = 240;
+  Camera camera;  // one camera for every state, framed on the first, so changes in size show
   for (int day = 0; day < 4; ++day) {
     const double shrink = 1.0 - 0.08 * day;
     Scene scene;
     SurfaceMaterial skin = SurfaceMaterial::skin(Vec3f(0.62f - 0.1f * day, 0.42f - 0.07f * day, 0.33f - 0.05f * day));
     scene.add(limb(260, 45 * shrink, 4), skin, "arm");
     scene.add(limb(240, 14, 3), SurfaceMaterial::bone(), "bone");
-    scene.frame(ViewName::left, 200.0 / 240.0);
+    if (day == 0) scene.frame(ViewName::left, 200.0 / 240.0);
+    if (day == 0) camera = scene.camera;
+    scene.camera = camera;
     cells.push_back({render(scene, settings), "day " + std::to_string(day * 10)});
   }
   const Image sheet = make_sheet(cells, 4, "Desiccation of a forearm (phantom)");
