@@ -6,8 +6,8 @@
 #include <cstring>
 #include <vector>
 
-#include "core/error.hpp"
 #include "core/base64.hpp"
+#include "core/error.hpp"
 
 namespace forensim {
 namespace {
