@@ -117,6 +117,21 @@ Vec3f Colormap::map(double value, double lo, double hi) const {
   return sample(range != 0.0 ? (value - lo) / range : 0.5);
 }
 
+Image colorize(const Image& values, const Colormap& map, double lo, double hi, const Vec3f& nan_colour) {
+  Image out(values.width(), values.height(), 3, 0.0f, PixelEncoding::srgb);
+  const double range = hi - lo;
+  for (int y = 0; y < values.height(); ++y)
+    for (int x = 0; x < values.width(); ++x) {
+      const double v = values.at(x, y, 0);
+      const Vec3f c = std::isnan(v) ? nan_colour : map.sample_srgb(range != 0.0 ? (v - lo) / range : 0.5);
+      float* p = out.pixel(x, y);
+      p[0] = c[0];
+      p[1] = c[1];
+      p[2] = c[2];
+    }
+  return out;
+}
+
 std::vector<std::string> colormap_names() {
   return {"viridis", "inferno", "magma", "turbo", "blue_white_red", "grey"};
 }

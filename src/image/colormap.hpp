@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "image/image.hpp"
 
 namespace forensim {
 
@@ -32,6 +33,12 @@ class Colormap {
  private:
   ColormapName m_name;
 };
+
+/// False-colour picture of channel 0 of `values` (moisture or height maps): each pixel mapped from
+/// [lo, hi] through `map`; an RGB image tagged PixelEncoding::srgb, ready for write_png or a sheet.
+/// NaN values become `nan_colour` (display sRGB).
+Image colorize(const Image& values, const Colormap& map, double lo, double hi,
+               const Vec3f& nan_colour = Vec3f(0.5f, 0.5f, 0.5f));
 
 /// Names of all colormaps, in ColormapName order.
 std::vector<std::string> colormap_names();

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "image/color.hpp"
 #include "image/colormap.hpp"
@@ -74,4 +76,18 @@ TEST(Colormap, ByNameAndClamping) {
   EXPECT_EQ(map.sample(-5.0), map.sample(0.0));
   EXPECT_EQ(map.sample(std::nan("")), map.sample(0.0));
   EXPECT_EQ(map.map(10.0, 0.0, 10.0), map.sample(1.0));
+}
+
+TEST(Colormap, ColorizeMapsRangeToEnds) {
+  Image values(3, 1, 1, 0.0f, PixelEncoding::data);
+  values.at(0, 0) = 2.0f;
+  values.at(1, 0) = 4.0f;
+  values.at(2, 0) = std::nanf("");
+  const Colormap map(ColormapName::magma);
+  const Image picture = colorize(values, map, 2.0, 4.0);
+  EXPECT_EQ(picture.encoding(), PixelEncoding::srgb);
+  ASSERT_EQ(picture.channels(), 3);
+  EXPECT_EQ(picture.rgba(0, 0).head<3>(), map.sample_srgb(0.0));
+  EXPECT_EQ(picture.rgba(1, 0).head<3>(), map.sample_srgb(1.0));
+  EXPECT_EQ(picture.rgba(2, 0).head<3>(), Vec3f(0.5f, 0.5f, 0.5f));
 }
