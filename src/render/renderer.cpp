@@ -832,8 +832,8 @@ Image Renderer::render(const Camera& camera, const RenderSettings& settings) con
               Vec4f(1.0f, 1.0f, 1.0f, colour[3]));
     if (!point.label.empty()) {
       const double size = std::max(10.0, 3.0 * point.radius_px);
-      draw_text(out, q[0] + point.radius_px + 4, q[1] - 0.6 * size, point.label, size,
-                Vec4f(0.05f, 0.05f, 0.05f, colour[3]));
+      draw_text_with_halo(out, q[0] + point.radius_px + 4, q[1] - 0.6 * size, point.label, size,
+                          Vec4f(0.05f, 0.05f, 0.05f, colour[3]), Vec4f(1.0f, 1.0f, 1.0f, 0.8f * colour[3]));
     }
   }
   return out;

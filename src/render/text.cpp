@@ -126,4 +126,18 @@ double draw_text(Image& image, double x, double y, const std::string& text, doub
   return metrics.width;
 }
 
+double draw_text_with_halo(Image& image, double x, double y, const std::string& text, double size_px,
+                           const Vec4f& colour, const Vec4f& halo, double halo_px, TextAlign align) {
+  const double r = std::isfinite(halo_px) ? std::clamp(halo_px, 0.0, 20.0) : 0.0;
+  if (r > 0) {
+    Vec4f soft = halo;
+    soft[3] *= 0.6f;  // eight overlapping copies: keep the halo from turning into a solid box
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * 0.25 * 3.14159265358979323846;
+      draw_text(image, x + r * std::cos(a), y + r * std::sin(a), text, size_px, soft, align);
+    }
+  }
+  return draw_text(image, x, y, text, size_px, colour, align);
+}
+
 }  // namespace forensim

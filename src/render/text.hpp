@@ -27,4 +27,10 @@ TextMetrics measure_text(const std::string& text, double size_px);
 double draw_text(Image& image, double x, double y, const std::string& text, double size_px, const Vec4f& colour,
                  TextAlign align = TextAlign::left);
 
+/// draw_text over a halo: the text is first drawn in `halo` shifted by up to `halo_px` in eight
+/// directions, so labels stay readable over any picture (landmark names over skin and bone).
+double draw_text_with_halo(Image& image, double x, double y, const std::string& text, double size_px,
+                           const Vec4f& colour, const Vec4f& halo, double halo_px = 1.5,
+                           TextAlign align = TextAlign::left);
+
 }  // namespace forensim

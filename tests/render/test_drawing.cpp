@@ -112,3 +112,17 @@ TEST(ToneMap, AcesIsMonotoneAndBounded) {
   EXPECT_NEAR(grey[0], 0.46f, 0.03f);  // mid-grey stays near sRGB 0.46
   EXPECT_GT(display_transform(Vec3f(0.18f, 0.18f, 0.18f), 1.0, ToneMap::aces)[0], grey[0]);
 }
+
+TEST(Text, HaloSurroundsTheGlyphs) {
+  Image plain(80, 30, 3, 0.0f, PixelEncoding::srgb);
+  Image haloed = plain;
+  draw_text(plain, 4, 4, "Go", 18, Vec4f(0.5f, 0.5f, 0.5f, 1));
+  draw_text_with_halo(haloed, 4, 4, "Go", 18, Vec4f(0.5f, 0.5f, 0.5f, 1), Vec4f(1, 1, 1, 1), 2.0);
+  int lit_plain = 0, lit_haloed = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 80; ++x) {
+      lit_plain += plain.at(x, y, 0) > 0.01f ? 1 : 0;
+      lit_haloed += haloed.at(x, y, 0) > 0.01f ? 1 : 0;
+    }
+  EXPECT_GT(lit_haloed, lit_plain + 40);
+}
