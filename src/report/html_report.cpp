@@ -5,34 +5,12 @@
 #include "core/atomic_file.hpp"
 #include "core/base64.hpp"
 #include "core/run_folder.hpp"
+#include "core/xml_escape.hpp"
 
 namespace forensim {
 
 std::string html_escape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
+  return xml_escape(text);
 }
 
 HtmlReport::HtmlReport(std::string title) : m_title(std::move(title)) {}

@@ -7,8 +7,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+
 #include <utility>
 #include <vector>
+#include "core/xml_escape.hpp"
 
 namespace forensim {
 
@@ -37,8 +39,5 @@ struct XmlDocument {
 /// Parses `bytes`; throws InputError(source, "line N", problem) for malformed XML, mismatched tags,
 /// nesting deeper than 64, or a missing root element.
 XmlDocument parse_xml(std::string_view bytes, const std::string& source);
-
-/// Escapes &, <, >, " and ' for attribute values and character data.
-std::string xml_escape(std::string_view text);
 
 }  // namespace forensim
