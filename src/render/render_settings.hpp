@@ -16,7 +16,7 @@ enum class ToneMap {
 struct RenderSettings {
   int width = 800;
   int height = 800;
-  /// Camera samples per pixel, stratified on a jittered grid; each sample traces one shadow ray per light
+  /// Camera samples per pixel (stratified, R2 sequence); each sample traces one shadow ray per light
   /// and one ambient-occlusion ray. 8 to 16 give clean soft shadows.
   int samples_per_pixel = 8;
   std::uint64_t seed = 1;
