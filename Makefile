@@ -1,6 +1,9 @@
 # Entry points for a fresh Debian 12 machine. Each target installs missing system packages first
 # (scripts/install-deps), then configures and builds with the CMake presets.
 JOBS ?= 2
+# ccache hits across clones in other folders (CI builds a fresh clone): hash paths relative to the tree.
+export CCACHE_BASEDIR ?= $(CURDIR)
+export CCACHE_NOHASHDIR ?= 1
 
 .PHONY: all deps build demo test test-slow sanitize bench format clean
 
