@@ -1,0 +1,353 @@
+// False positives of -Wnull-dereference inside the standard library, Boost and CGAL containers after inlining:
+// the warning is reported at header locations, so it is disabled before any include.
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // likewise, in std::pair inside CGAL at -O1 (sanitizer builds)
+
+#include "tetrahedralize/tetrahedralize.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_polyhedron_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polyhedral_complex_mesh_domain_3.h>
+#include <CGAL/Random.h>
+#include <CGAL/refine_mesh_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <unordered_map>
+
+#include "core/error.hpp"
+#include "core/timer.hpp"
+#include "geometry/bounding_box.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "geometry/mesh_topology.hpp"
+#include "mesh_processing/repair_mesh.hpp"
+#include "spatial/winding_number.hpp"
+#include "volume/iso_surface.hpp"
+
+namespace forensim {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Polyhedron = CGAL::Mesh_polyhedron_3<Kernel>::type;
+using Domain = CGAL::Polyhedral_complex_mesh_domain_3<Kernel, Polyhedron>;
+using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
+using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
+using Point = Kernel::Point_3;
+
+// Subdomain labels of the implicit domain (0 is outside).
+constexpr int domain_flesh = 1;
+constexpr int domain_bone = 2;
+
+/// A checked, closed copy of an input surface (repaired when needed).
+TriMesh prepare_surface(const TriMesh& input, const std::string& name, std::vector<std::string>& notes) {
+  input.validate(name);
+  require_input(input.triangle_count() > 0, name, "", "the surface is empty (no triangles)");
+  TriMesh mesh;
+  mesh.positions = input.positions;
+  mesh.triangles = input.triangles;
+  const TopologyReport topology = check_topology(mesh);
+  if (!topology.is_closed() || !topology.is_manifold() || !topology.is_oriented() ||
+      topology.degenerate_triangle_count > 0) {
+    // Scan artefacts are small; an opening a quarter of the surface's size is a cut, not a hole to guess.
+    RepairOptions repair;
+    repair.max_hole_edges = 500;
+    repair.max_hole_diameter = 0.25 * bounding_box(mesh.positions).diagonal();
+    const RepairReport done = repair_mesh(mesh, repair);
+    if (!done.closed() || !done.manifold()) {
+      throw InputError(name, "",
+                       "the surface is not closed and could not be repaired (" + topology.summary() +
+                           "; after repair: " + done.after.summary() + ")");
+    }
+    notes.push_back(name + " repaired: " + topology.summary() + " -> " + done.after.summary());
+  }
+  double volume = enclosed_volume(mesh);
+  if (volume < 0.0) {
+    for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
+    volume = -volume;
+    notes.push_back(name + " was oriented inward; flipped");
+  }
+  require_input(volume > 0.0, name, "", "the surface encloses no volume");
+  return mesh;
+}
+
+Polyhedron to_polyhedron(const TriMesh& mesh) {
+  std::vector<Point> points;
+  points.reserve(mesh.positions.size());
+  for (const Vec3& x : mesh.positions) points.emplace_back(x.x(), x.y(), x.z());
+  std::vector<std::array<std::size_t, 3>> faces;
+  faces.reserve(mesh.triangles.size());
+  for (const Tri& t : mesh.triangles) {
+    faces.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+  }
+  Polyhedron polyhedron;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, polyhedron);
+  return polyhedron;
+}
+
+struct MeshPass {
+  TetMesh mesh;
+  double seconds = 0.0;
+};
+
+/// One Mesh_3 run with criteria for `edge` mm.
+MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, double edge,
+                   const TetrahedralizeOptions& o) {
+  Stopwatch watch;
+  CGAL::Random rng(o.seed);
+  namespace p = CGAL::parameters;
+  // Patches: the skin separates flesh (inside) from the outside (0), each bone separates bone (inside) from
+  // flesh; pairs are (inside, outside) as the domain's ray-shooting Is_in_domain reads them.
+  std::vector<Polyhedron> patches{to_polyhedron(skin)};
+  std::vector<std::pair<int, int>> sides{{domain_flesh, 0}};
+  for (const TriMesh& bone : bones) {
+    patches.push_back(to_polyhedron(bone));
+    sides.emplace_back(domain_bone, domain_flesh);
+  }
+  Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
+  // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
+  const double cell_size = 0.612 * edge;
+  Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
+                    p::facet_distance = o.surface_distance_fraction * edge,
+                    p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
+
+  // Seed every surface (skin and each bone component) with points, so no bone is missed by the random
+  // initial rays Mesh_3 would shoot from the domain's centre.
+  Complex complex;
+  Triangulation& tr = complex.triangulation();
+  auto construct_intersection = domain.construct_intersection_object();
+  std::vector<const TriMesh*> surfaces{&skin};
+  for (const TriMesh& b : bones) surfaces.push_back(&b);
+  for (const TriMesh* surface : surfaces) {
+    const std::vector<Vec3> normals = vertex_normals(*surface);
+    int components = 0;
+    const std::vector<int> component = triangle_components(*surface, &components);
+    std::vector<int> seeded(static_cast<std::size_t>(components), 0);
+    const std::size_t stride = std::max<std::size_t>(1, surface->triangle_count() / 400);
+    for (std::size_t t = 0; t < surface->triangle_count(); t += stride) {
+      int& count = seeded[static_cast<std::size_t>(component[t])];
+      if (count >= 24) continue;
+      const Index v = surface->triangles[t][0];
+      const Vec3& x = surface->positions[static_cast<std::size_t>(v)];
+      const Vec3& n = normals[static_cast<std::size_t>(v)];
+      const double h = 0.25 * edge;
+      const Vec3 a = x - h * n, b = x + h * n;
+      const auto hit =
+          construct_intersection(Kernel::Segment_3(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z())));
+      if (std::get<2>(hit) == 0) continue;
+      const auto vertex = tr.insert(Triangulation::Weighted_point(std::get<0>(hit)));
+      if (vertex == Triangulation::Vertex_handle()) continue;
+      complex.set_dimension(vertex, 2);
+      complex.set_index(vertex, std::get<1>(hit));
+      ++count;
+    }
+  }
+  if (tr.dimension() != 3) {
+    throw InputError("skin surface", "",
+                     "too small or too thin to mesh at an edge length of " + std::to_string(edge) + " mm");
+  }
+  if (o.perturb) {
+    CGAL::refine_mesh_3(complex, domain, criteria, p::manifold(), p::no_lloyd(), p::no_odt(),
+                        p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg),
+                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
+  } else {
+    CGAL::refine_mesh_3(complex, domain, criteria, p::manifold(), p::no_lloyd(), p::no_odt(), p::no_perturb(),
+                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
+  }
+
+  MeshPass pass;
+  std::unordered_map<Triangulation::Vertex_handle, Index> node_of;
+  for (auto cell = complex.cells_in_complex_begin(); cell != complex.cells_in_complex_end(); ++cell) {
+    Tet tet{};
+    Vec3 corner[4];
+    for (int i = 0; i < 4; ++i) {
+      const auto vh = cell->vertex(i);
+      auto found = node_of.find(vh);
+      if (found == node_of.end()) {
+        const Point& q = tr.point(vh).point();
+        found = node_of.emplace(vh, static_cast<Index>(pass.mesh.positions.size())).first;
+        pass.mesh.positions.emplace_back(q.x(), q.y(), q.z());
+      }
+      tet[static_cast<std::size_t>(i)] = found->second;
+      corner[i] = pass.mesh.positions[static_cast<std::size_t>(found->second)];
+    }
+    const double volume = tet_signed_volume(corner[0], corner[1], corner[2], corner[3]);
+    if (volume == 0.0) continue;
+    if (volume < 0.0) std::swap(tet[2], tet[3]);
+    pass.mesh.tets.push_back(tet);
+    pass.mesh.tet_labels.push_back(complex.subdomain_index(cell) == domain_bone ? tissue_bone : tissue_flesh);
+  }
+  pass.seconds = watch.seconds();
+  return pass;
+}
+
+std::string format_mm3(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f cm^3", v / 1000.0);
+  return text;
+}
+
+}  // namespace
+
+std::string TetrahedralizeReport::summary() const {
+  char line[512];
+  std::string out;
+  std::snprintf(line, sizeof line, "%zu nodes, %zu tets (%zu bone) at edge %.2f mm, %d pass%s\n", node_count, tet_count,
+                bone_tet_count, edge_length_mm, passes, passes == 1 ? "" : "es");
+  out += line;
+  const auto percent = [](double a, double b) { return b == 0.0 ? 0.0 : 100.0 * (a - b) / b; };
+  out += "volume: tets " + format_mm3(tet_volume_mm3) + ", skin surface " + format_mm3(skin_volume_mm3);
+  std::snprintf(line, sizeof line, " (%+.2f %%)\n", percent(tet_volume_mm3, skin_volume_mm3));
+  out += line;
+  out += "bone: tets " + format_mm3(bone_tet_volume_mm3) + ", bone surfaces " + format_mm3(bone_volume_mm3);
+  std::snprintf(line, sizeof line, " (%+.2f %%)\n", percent(bone_tet_volume_mm3, bone_volume_mm3));
+  out += line;
+  std::snprintf(line, sizeof line, "time: prepare %.2f s, mesh %.2f s\n", seconds_prepare, seconds_mesh);
+  out += line;
+  for (const std::string& note : notes) out += "note: " + note + "\n";
+  return out;
+}
+
+std::size_t paper_target_nodes(const std::string& phantom_name) {
+  if (phantom_name == "arm") return 29000;
+  if (phantom_name == "head") return 35000;
+  throw InputError("paper preset", "", "no Table 1 size for '" + phantom_name + "' (known: arm, head)");
+}
+
+TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bone_inputs,
+                       const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
+  Stopwatch watch;
+  TetrahedralizeReport local;
+  TetrahedralizeReport& r = report ? *report : local;
+  r = TetrahedralizeReport{};
+  require_input(options.edge_length_mm >= 0.0 && std::isfinite(options.edge_length_mm), "tetrahedralize options",
+                "edge_length_mm", "must be a finite length >= 0");
+  require_input(options.edge_length_mm > 0.0 || options.target_nodes > 0 || options.target_tets > 0,
+                "tetrahedralize options", "", "give an edge length, a node count or a tet count");
+  require_input(options.radius_edge_bound >= 1.0, "tetrahedralize options", "radius_edge_bound", "must be >= 1");
+  require_input(options.surface_distance_fraction > 0.0 && options.surface_distance_fraction <= 1.0,
+                "tetrahedralize options", "surface_distance_fraction", "must be in (0, 1]");
+  require_input(options.facet_angle_deg > 0.0 && options.facet_angle_deg <= 30.0, "tetrahedralize options",
+                "facet_angle_deg", "must be in (0, 30]");
+
+  const TriMesh skin = prepare_surface(skin_input, "skin surface", r.notes);
+  r.skin_volume_mm3 = enclosed_volume(skin);
+  auto skin_winding = std::make_shared<const WindingNumber>(skin);
+  std::vector<TriMesh> bones;
+  for (std::size_t i = 0; i < bone_inputs.size(); ++i) {
+    const std::string name = "bone surface " + std::to_string(i);
+    TriMesh bone = prepare_surface(bone_inputs[i], name, r.notes);
+    const std::vector<bool> inside = skin_winding->inside_batch(bone.positions);
+    const auto outside = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), false));
+    if (outside > 0) {
+      throw InputError(name,
+                       "vertex " + std::to_string(std::find(inside.begin(), inside.end(), false) - inside.begin()),
+                       std::to_string(outside) + " of " + std::to_string(bone.vertex_count()) +
+                           " vertices lie outside the skin surface; bones must lie inside the skin");
+    }
+    r.bone_volume_mm3 += enclosed_volume(bone);
+    bones.push_back(std::move(bone));
+  }
+  // Bones must not overlap each other (their surfaces would cross).
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    const WindingNumber winding(bones[i]);
+    for (std::size_t j = 0; j < bones.size(); ++j) {
+      if (j == i) continue;
+      const std::vector<bool> inside = winding.inside_batch(bones[j].positions);
+      const auto overlap = std::find(inside.begin(), inside.end(), true);
+      if (overlap != inside.end()) {
+        throw InputError("bone surface " + std::to_string(j), "vertex " + std::to_string(overlap - inside.begin()),
+                         "lies inside bone surface " + std::to_string(i) + "; bones must not overlap");
+      }
+    }
+  }
+  r.seconds_prepare = watch.seconds();
+
+  // Edge length: given, or from the count target. A Mesh_3 mesh of edge h has about V / (0.1 h^3) tets and
+  // a sixth as many nodes (measured on the phantoms); a second pass corrects the estimate.
+  double edge = options.edge_length_mm;
+  const bool by_count = edge <= 0.0;
+  const double target =
+      options.target_nodes > 0 ? static_cast<double>(options.target_nodes) : static_cast<double>(options.target_tets);
+  const double per_tet = options.target_nodes > 0 ? 1.0 / 5.0 : 1.0;
+  if (by_count) edge = std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
+  MeshPass pass = mesh_once(skin, bones, edge, options);
+  r.passes = 1;
+  if (by_count) {
+    // Counts fall between h^-2 (surface-dominated) and h^-3 (volume-dominated): start from an exponent of 2.5,
+    // then take secant steps on log(count) against log(edge) (at most four passes in all).
+    auto count_of = [&](const MeshPass& mp) {
+      return options.target_nodes > 0 ? static_cast<double>(mp.mesh.vertex_count())
+                                      : static_cast<double>(mp.mesh.tet_count());
+    };
+    double exponent = 2.5;
+    double got = count_of(pass);
+    double total_seconds = pass.seconds;
+    while (got > 0.0 && std::abs(got - target) > options.count_tolerance * target && r.passes < 4) {
+      const double previous_edge = edge, previous_got = got;
+      edge *= std::pow(got / target, 1.0 / exponent);
+      pass = mesh_once(skin, bones, edge, options);
+      total_seconds += pass.seconds;
+      ++r.passes;
+      got = count_of(pass);
+      const double measured = std::log(got / previous_got) / std::log(previous_edge / edge);
+      if (std::isfinite(measured) && measured > 1.0 && measured < 4.0) exponent = measured;
+    }
+    pass.seconds = total_seconds;
+  }
+  require_input(pass.mesh.tet_count() > 0, "skin surface", "",
+                "no tets were produced at an edge length of " + std::to_string(edge) + " mm");
+  r.edge_length_mm = edge;
+  r.seconds_mesh = pass.seconds;
+  r.node_count = pass.mesh.vertex_count();
+  r.tet_count = pass.mesh.tet_count();
+  r.bone_tet_count =
+      static_cast<std::size_t>(std::count(pass.mesh.tet_labels.begin(), pass.mesh.tet_labels.end(), tissue_bone));
+  r.tet_volume_mm3 = tet_mesh_volume(pass.mesh);
+  r.bone_tet_volume_mm3 = tet_mesh_volume(pass.mesh, tissue_bone);
+  return std::move(pass.mesh);
+}
+
+TetMesh tetrahedralize_ct(const ScalarGrid& grid, double skin_iso, double bone_iso,
+                          const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
+  require_input(std::isfinite(skin_iso) && std::isfinite(bone_iso) && bone_iso > skin_iso, "CT iso-values", "",
+                "need finite iso-values with bone above skin");
+  IsoSurfaceOptions iso;
+  iso.keep_largest_components = 1;
+  TriMesh skin = extract_iso_surface(grid, skin_iso, iso);
+  require_input(skin.triangle_count() > 0, "CT volume", "skin iso-value " + std::to_string(skin_iso),
+                "no sample lies above the skin iso-value");
+  iso.keep_largest_components = 0;
+  const TriMesh bone_all = extract_iso_surface(grid, bone_iso, iso);
+  std::vector<TriMesh> bones;
+  if (bone_all.triangle_count() > 0) {
+    // Keep the bone components that lie entirely inside the skin and enclose a positive volume (inner
+    // shells of hollow bones are part of the component set of their outer shell's volume only when nested;
+    // they are kept together so the winding number handles cavities).
+    const WindingNumber skin_winding(skin);
+    const std::vector<bool> inside = skin_winding.inside_batch(bone_all.positions);
+    std::vector<bool> keep(bone_all.triangle_count(), false);
+    int components = 0;
+    const std::vector<int> component = triangle_components(bone_all, &components);
+    std::vector<char> component_ok(static_cast<std::size_t>(components), 1);
+    for (std::size_t t = 0; t < bone_all.triangle_count(); ++t) {
+      for (Index v : bone_all.triangles[t]) {
+        if (!inside[static_cast<std::size_t>(v)]) component_ok[static_cast<std::size_t>(component[t])] = 0;
+      }
+    }
+    for (std::size_t t = 0; t < bone_all.triangle_count(); ++t)
+      keep[t] = component_ok[static_cast<std::size_t>(component[t])] != 0;
+    TriMesh bone = extract_triangles(bone_all, keep);
+    if (bone.triangle_count() > 0 && enclosed_volume(bone) > 0.0) bones.push_back(std::move(bone));
+  }
+  return tetrahedralize(skin, bones, options, report);
+}
+
+}  // namespace forensim

@@ -1,0 +1,94 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "geometry/bounding_box.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "geometry/mesh_topology.hpp"
+#include "geometry/primitives.hpp"
+#include "geometry/tet_boundary.hpp"
+#include "phantoms/phantom.hpp"
+#include "phantoms/phantom_surface.hpp"
+#include "spatial/closest_point.hpp"
+#include "spatial/winding_number.hpp"
+#include "tetrahedralize/tet_quality.hpp"
+#include "tetrahedralize/tetrahedralize.hpp"
+
+using namespace forensim;
+
+#include "tet_model_tests.hpp"
+
+INSTANTIATE_TEST_SUITE_P(Quick, ModelTets, ::testing::Values("spheres"));
+
+TEST(Tetrahedralize, InwardSkinIsFlipped) {
+  TriMesh skin = make_icosphere(Vec3::Zero(), 20.0, 2);
+  for (Tri& t : skin.triangles) std::swap(t[1], t[2]);
+  TetrahedralizeOptions o;
+  o.edge_length_mm = 8.0;
+  TetrahedralizeReport r;
+  const TetMesh m = tetrahedralize(skin, {}, o, &r);
+  EXPECT_NEAR(tet_mesh_volume(m), -enclosed_volume(skin), 0.03 * -enclosed_volume(skin));
+  EXPECT_FALSE(r.notes.empty());
+}
+
+TEST(Tetrahedralize, SmallHoleIsRepaired) {
+  TriMesh skin = make_icosphere(Vec3::Zero(), 20.0, 3);
+  skin.triangles.erase(skin.triangles.begin());
+  TetrahedralizeOptions o;
+  o.edge_length_mm = 8.0;
+  TetrahedralizeReport r;
+  const TetMesh m = tetrahedralize(skin, {}, o, &r);
+  EXPECT_GT(m.tet_count(), 0u);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes[0].find("repaired"), std::string::npos);
+}
+
+TEST(Tetrahedralize, BadInputsAreInputErrors) {
+  const TriMesh skin = make_icosphere(Vec3::Zero(), 20.0, 3);
+  TetrahedralizeOptions o;
+  o.edge_length_mm = 8.0;
+  // Empty skin.
+  EXPECT_THROW(tetrahedralize(TriMesh{}, {}, o), InputError);
+  // A hemisphere: one hole too big for repair.
+  TriMesh open = skin;
+  std::vector<bool> keep(open.triangle_count());
+  for (std::size_t t = 0; t < keep.size(); ++t) keep[t] = open.positions[open.triangles[t][0]].z() > -5.0;
+  open = extract_triangles(open, keep);
+  try {
+    tetrahedralize(open, {}, o);
+    ADD_FAILURE() << "open skin accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "skin surface");
+  }
+  // A bone partly outside the skin.
+  try {
+    tetrahedralize(skin, {make_icosphere(Vec3(18, 0, 0), 5.0, 2)}, o);
+    ADD_FAILURE() << "bone outside the skin accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "bone surface 0");
+  }
+  // Overlapping bones.
+  EXPECT_THROW(tetrahedralize(skin, {make_icosphere(Vec3(2, 0, 0), 5.0, 2), make_icosphere(Vec3(-2, 0, 0), 5.0, 2)}, o),
+               InputError);
+  // An empty bone.
+  EXPECT_THROW(tetrahedralize(skin, {TriMesh{}}, o), InputError);
+  // No size.
+  EXPECT_THROW(tetrahedralize(skin, {}, TetrahedralizeOptions{}), InputError);
+  // Non-finite position.
+  TriMesh nan = skin;
+  nan.positions[0].x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(tetrahedralize(nan, {}, o), InputError);
+}
+
+TEST(Tetrahedralize, PaperPresetKnowsArmAndHead) {
+  EXPECT_EQ(paper_target_nodes("arm"), 29000u);
+  EXPECT_EQ(paper_target_nodes("head"), 35000u);
+  EXPECT_THROW(paper_target_nodes("foot"), InputError);
+}

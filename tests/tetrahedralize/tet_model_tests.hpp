@@ -1,0 +1,146 @@
+#pragma once
+/// Property tests shared by the quick (nested spheres) and slow (arm, head phantoms) suites: volume
+/// conservation, bone volume, positive tets, labels against winding numbers, Hausdorff distance to the skin.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "geometry/bounding_box.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "geometry/mesh_topology.hpp"
+#include "geometry/primitives.hpp"
+#include "geometry/tet_boundary.hpp"
+#include "phantoms/phantom.hpp"
+#include "phantoms/phantom_surface.hpp"
+#include "spatial/closest_point.hpp"
+#include "spatial/winding_number.hpp"
+#include "tetrahedralize/tet_quality.hpp"
+#include "tetrahedralize/tetrahedralize.hpp"
+
+using namespace forensim;  // NOLINT: test-only header, included once per test program
+
+namespace tet_test {
+
+struct Meshed {
+  TriMesh skin, bone;
+  TetMesh tets;
+  TetrahedralizeReport report;
+  double edge = 0.0;
+};
+
+/// Surfaces ("spheres", or a phantom name) and their tet mesh at a coarse size, built once for all tests.
+inline const Meshed& coarse(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<Meshed>> cache;
+  auto& slot = cache[name];
+  if (!slot) {
+    slot = std::make_unique<Meshed>();
+    TetrahedralizeOptions options;
+    if (name == "spheres") {
+      // A ball of flesh around an off-centre ball of bone: small enough for the quick suite.
+      slot->skin = make_icosphere(Vec3::Zero(), 30.0, 4);
+      slot->bone = make_icosphere(Vec3(4, -2, 1), 15.0, 4);
+      options.edge_length_mm = slot->edge = 6.0;
+      options.surface_distance_fraction = 0.02;
+    } else {
+      const auto phantom = make_phantom(name);
+      slot->skin = phantom_surface(*phantom, PhantomSurface::skin, 3.0);
+      slot->bone = phantom_surface(*phantom, PhantomSurface::bone, 2.0);
+      // Finer than the head: the arm's fingers are about 16 mm thick.
+      options.edge_length_mm = slot->edge = name == "arm" ? 8.0 : 12.0;
+    }
+    slot->tets = tetrahedralize(slot->skin, {slot->bone}, options, &slot->report);
+    std::printf("%s:\n%s%s", name.c_str(), slot->report.summary().c_str(), tet_quality(slot->tets).summary().c_str());
+  }
+  return *slot;
+}
+
+}  // namespace tet_test
+
+class ModelTets : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ModelTets, VolumeMatchesTheSkinWithinOnePercent) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  const double skin = enclosed_volume(m.skin);
+  EXPECT_NEAR(tet_mesh_volume(m.tets), skin, 0.01 * skin);
+  EXPECT_NEAR(m.report.tet_volume_mm3, tet_mesh_volume(m.tets), 1e-6 * skin);
+}
+
+TEST_P(ModelTets, BoneVolumeMatchesTheBonesWithinTwoPercent) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  const double bone = enclosed_volume(m.bone);
+  ASSERT_GT(bone, 0.0);
+  EXPECT_NEAR(tet_mesh_volume(m.tets, tissue_bone), bone, 0.02 * bone);
+}
+
+TEST_P(ModelTets, EveryTetIsPositiveAndLabelled) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  ASSERT_GT(m.tets.tet_count(), 100u);
+  EXPECT_NO_THROW(m.tets.validate("tets"));
+  ASSERT_EQ(m.tets.tet_labels.size(), m.tets.tet_count());
+  for (std::size_t t = 0; t < m.tets.tet_count(); ++t) {
+    const Tet& k = m.tets.tets[t];
+    ASSERT_GT(tet_signed_volume(m.tets.positions[k[0]], m.tets.positions[k[1]], m.tets.positions[k[2]],
+                                m.tets.positions[k[3]]),
+              0.0)
+        << "tet " << t;
+    ASSERT_TRUE(m.tets.tet_labels[t] == tissue_flesh || m.tets.tet_labels[t] == tissue_bone);
+  }
+  const TetQualityReport q = tet_quality(m.tets);
+  EXPECT_EQ(q.inverted_count, 0u);
+  EXPECT_EQ(q.flat_count, 0u);
+  EXPECT_GT(q.dihedral_min, 1.0);
+  // Every node is used by a tet.
+  std::vector<char> used(m.tets.vertex_count(), 0);
+  for (const Tet& k : m.tets.tets)
+    for (Index v : k) used[static_cast<std::size_t>(v)] = 1;
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
+}
+
+TEST_P(ModelTets, LabelsAgreeWithPointInMeshTests) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  const WindingNumber bone(m.bone);
+  RandomStream rng(7, 0);
+  std::vector<Vec3> samples;
+  std::vector<int> labels;
+  for (int i = 0; i < 2000; ++i) {
+    const std::size_t t =
+        static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(m.tets.tet_count()) - 1));
+    // Random barycentric point of a random tet.
+    double w[4], sum = 0.0;
+    for (double& x : w) sum += (x = -std::log(rng.uniform(1e-12, 1.0)));
+    Vec3 p = Vec3::Zero();
+    for (int c = 0; c < 4; ++c) p += (w[c] / sum) * m.tets.positions[static_cast<std::size_t>(m.tets.tets[t][c])];
+    samples.push_back(p);
+    labels.push_back(m.tets.tet_labels[t]);
+  }
+  const std::vector<bool> inside = bone.inside_batch(samples);
+  int agree = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) agree += (inside[i] == (labels[i] == tissue_bone)) ? 1 : 0;
+  EXPECT_GE(agree, 0.98 * static_cast<double>(samples.size()));
+}
+
+TEST_P(ModelTets, BoundaryLiesWithinAnEdgeLengthOfTheSkin) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  const TriMesh boundary = tet_boundary_mesh(m.tets);
+  // Both directions of the Hausdorff distance, measured at the vertices and triangle centroids.
+  const auto one_way = [](const TriMesh& from, const TriMesh& to) {
+    const ClosestPointQuery query(to);
+    std::vector<Vec3> points = from.positions;
+    for (const Tri& t : from.triangles)
+      points.push_back((from.positions[t[0]] + from.positions[t[1]] + from.positions[t[2]]) / 3.0);
+    double worst = 0.0;
+    for (const auto& hit : query.query_batch(points)) worst = std::max(worst, hit ? hit->distance : 1e300);
+    return worst;
+  };
+  EXPECT_LT(one_way(boundary, m.skin), m.edge);
+  EXPECT_LT(one_way(m.skin, boundary), m.edge);
+  EXPECT_TRUE(check_topology(boundary).is_closed());
+}
