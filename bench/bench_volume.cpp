@@ -3,10 +3,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <filesystem>
 
-#include "forensim/config.hpp"
+#include "core/data_dir.hpp"
 #include "phantoms/ct_head_phantom.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
@@ -16,9 +15,7 @@ using namespace forensim;
 namespace {
 
 std::filesystem::path headsq_path() {
-  const char* env = std::getenv("FORENSIM_DATA_DIR");
-  const std::filesystem::path data = env != nullptr && *env != '\0' ? env : FORENSIM_DEFAULT_DATA_DIR;
-  return data / "ct-head-headsq" / "quarter.nhdr";
+  return shared_data_dir() / "ct-head-headsq" / "quarter.nhdr";
 }
 
 const ScalarGrid& phantom_ct() {

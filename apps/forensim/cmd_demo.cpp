@@ -4,17 +4,16 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/data_dir.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
-#include "forensim/config.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "image/png_io.hpp"
@@ -60,8 +59,7 @@ struct DemoContext {
 
 std::filesystem::path data_folder(const DemoArgs& a) {
   if (!a.data.empty()) return a.data;
-  if (const char* env = std::getenv("FORENSIM_DATA_DIR"); env != nullptr && *env != '\0') return env;
-  return FORENSIM_DEFAULT_DATA_DIR;
+  return shared_data_dir();
 }
 
 std::vector<std::pair<std::string, std::string>> surface_facts(const std::string& label, const TriMesh& mesh) {

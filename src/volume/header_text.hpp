@@ -10,6 +10,13 @@
 
 namespace forensim {
 
+/// A header value with the 1-based line it was read from, for error locations.
+struct HeaderField {
+  std::string value;
+  int line = 0;
+  std::string location() const { return "line " + std::to_string(line); }
+};
+
 /// One header line: its text (trailing CR removed) and 1-based line number.
 struct HeaderLine {
   std::string text;

@@ -17,11 +17,7 @@
 namespace forensim {
 namespace {
 
-struct Field {
-  std::string value;
-  int line = 0;
-  std::string location() const { return "line " + std::to_string(line); }
-};
+using Field = HeaderField;
 
 std::optional<VoxelType> meta_type(const std::string& name) {
   static const std::map<std::string, VoxelType> types = {

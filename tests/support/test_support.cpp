@@ -1,15 +1,14 @@
 #include "support/test_support.hpp"
 
-#include <cstdlib>
 #include <system_error>
 
+#include "core/data_dir.hpp"
 #include "forensim/config.hpp"
 
 namespace forensim::test {
 
 std::filesystem::path data_dir() {
-  if (const char* env = std::getenv("FORENSIM_DATA_DIR"); env != nullptr && *env != '\0') return env;
-  return FORENSIM_DEFAULT_DATA_DIR;
+  return shared_data_dir();
 }
 
 std::filesystem::path data_path(const std::string& relative) {
