@@ -120,18 +120,8 @@ void phantom_section(DemoContext& ctx, const std::string& name) {
   for (auto& f : surface_facts("bone", *bone)) facts.push_back(f);
   ctx.report.facts(facts);
   watch.restart();
-  const bool arm = name == "arm";
-  const ViewAxes axes = arm ? ViewAxes{Vec3::UnitZ(), Vec3::UnitY()} : ViewAxes{};
-  Scene plain;
-  plain.environment.up = axes.up;
-  plain.add(skin, SurfaceMaterial::skin(), "skin");
-  std::vector<SheetCell> cells;
-  cells.push_back({render_view(plain, ctx.settings, arm ? "top" : "front", axes), arm ? "back of the hand" : "front"});
-  cells.push_back({render_view(plain, ctx.settings, arm ? "front" : "left", axes), arm ? "thumb side" : "side"});
-  cells.push_back({render_view(cutaway_scene(skin, bone, arm ? Vec3(Vec3::UnitZ()) : axes.left(), axes), ctx.settings,
-                               arm ? "top" : "left", axes),
-                   "cut-away: bone inside flesh"});
-  ctx.picture(make_sheet(cells, 3, "phantom: " + name), "phantom_" + name + ".png", "Built-in phantom '" + name + "'");
+  const auto cells = phantom_view_cells(name, skin, bone, ctx.settings);
+  ctx.picture(make_sheet(cells, 4, "phantom: " + name), "phantom_" + name + ".png", "Built-in phantom '" + name + "'");
   ctx.timed("phantom " + name + ": pictures", watch.seconds());
 }
 

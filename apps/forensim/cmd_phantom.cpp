@@ -51,21 +51,7 @@ int run_phantom(const PhantomArgs& a) {
   watch.restart();
   RenderSettings settings;
   settings.width = settings.height = a.picture_size;
-  const ViewAxes axes;
-  const bool arm = a.name == "arm";
-  // The arm lies along +x with the back of the hand up: view it from above and from the thumb side.
-  const ViewAxes arm_axes{Vec3::UnitZ(), Vec3::UnitY()};
-  const ViewAxes& use_axes = arm ? arm_axes : axes;
-  Scene plain;
-  plain.add(std::shared_ptr<const TriMesh>(skin), SurfaceMaterial::skin(), "skin");
-  std::vector<SheetCell> cells;
-  cells.push_back({render_view(plain, settings, arm ? "top" : "front", use_axes), arm ? "back of the hand" : "front"});
-  cells.push_back({render_view(plain, settings, arm ? "front" : "left", use_axes), arm ? "thumb side" : "side"});
-  cells.push_back({render_view(skin_over_bone_scene(skin, bone, 0.3, use_axes), settings, "three_quarter", use_axes),
-                   "skin over bone"});
-  cells.push_back({render_view(cutaway_scene(skin, bone, arm ? Vec3(Vec3::UnitZ()) : Vec3(-Vec3::UnitX()), use_axes),
-                               settings, arm ? "top" : "left", use_axes),
-                   "cut-away"});
+  const auto cells = phantom_view_cells(a.name, skin, bone, settings);
   write_png(run.file(a.name + "_views.png"), make_sheet(cells, 2, "forensim phantom: " + a.name));
   run.add_output(a.name + "_views.png");
   run.timings().add("pictures", watch.seconds());

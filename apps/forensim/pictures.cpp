@@ -89,6 +89,26 @@ Image render_view(Scene scene, const RenderSettings& settings, const std::string
   return render(scene, settings);
 }
 
+std::vector<SheetCell> phantom_view_cells(const std::string& phantom_name, std::shared_ptr<const TriMesh> skin,
+                                          std::shared_ptr<const TriMesh> bone, const RenderSettings& settings) {
+  // The arm lies along +x with the back of the hand up (+z) and the thumb toward +y.
+  const bool arm = phantom_name == "arm";
+  const ViewAxes axes = arm ? ViewAxes{Vec3::UnitZ(), Vec3::UnitY()} : ViewAxes{};
+  Scene plain;
+  plain.environment.up = axes.up;
+  plain.add(skin, SurfaceMaterial::skin(), "skin");
+  std::vector<SheetCell> cells;
+  cells.push_back({render_view(plain, settings, arm ? "top" : "front", axes), arm ? "back of the hand" : "front"});
+  cells.push_back({render_view(plain, settings, arm ? "front" : "left", axes), arm ? "thumb side" : "side"});
+  cells.push_back(
+      {render_view(skin_over_bone_scene(skin, bone, 0.3, axes), settings, "three_quarter", axes), "skin over bone"});
+  // The cut removes the half the camera looks from: the back of the hand, or the subject's left.
+  const Vec3 cut_normal = arm ? Vec3(Vec3::UnitZ()) : axes.left();
+  cells.push_back({render_view(cutaway_scene(skin, bone, cut_normal, axes), settings, arm ? "top" : "left", axes),
+                   "cut-away: bone inside flesh"});
+  return cells;
+}
+
 ViewAxes axes_from_name(const std::string& name) {
   if (name == "lps") return ViewAxes{};
   if (name == "yup") return ViewAxes{Vec3::UnitY(), Vec3::UnitZ()};

@@ -10,6 +10,7 @@
 #include "image/image.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene.hpp"
+#include "render/sheet.hpp"
 
 namespace forensim::cli {
 
@@ -37,6 +38,11 @@ Scene cutaway_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const T
 
 /// Renders `scene` from the named view (framed around the scene).
 Image render_view(Scene scene, const RenderSettings& settings, const std::string& view, const ViewAxes& axes);
+
+/// The pictures of a built-in phantom: skin from two sides, skin over bone, and a cut-away showing bone
+/// inside flesh (the arm from above and from the thumb side; the head from the front and the left).
+std::vector<SheetCell> phantom_view_cells(const std::string& phantom_name, std::shared_ptr<const TriMesh> skin,
+                                          std::shared_ptr<const TriMesh> bone, const RenderSettings& settings);
 
 /// Axes by name: "lps" (CT: z up, -y front) or "yup" (glTF/OBJ heads: y up, +z front).
 ViewAxes axes_from_name(const std::string& name);
