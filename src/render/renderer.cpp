@@ -573,6 +573,17 @@ SurfacePoint Renderer::Impl::surface(const Hit& hit, const Vec3& o, const Vec3& 
       break;
     }
   }
+  if (m.wire_width_mm > 0.0) {
+    // Distance of the hit to the edge opposite corner i is b_i times that corner's height, 2 A / |e_i|.
+    const Vec3 q0 = p.positions[static_cast<std::size_t>(tri[0])].cast<double>();
+    const Vec3 q1 = p.positions[static_cast<std::size_t>(tri[1])].cast<double>();
+    const Vec3 q2 = p.positions[static_cast<std::size_t>(tri[2])].cast<double>();
+    const double twice_area = (q1 - q0).cross(q2 - q0).norm();
+    const double to_edge = std::min({b0 * twice_area / std::max((q2 - q1).norm(), 1e-12),
+                                     b1 * twice_area / std::max((q2 - q0).norm(), 1e-12),
+                                     b2 * twice_area / std::max((q1 - q0).norm(), 1e-12)});
+    if (to_edge < m.wire_width_mm) albedo = m.wire_colour;
+  }
   sp.albedo = albedo.cwiseMax(0.0f).cwiseMin(1.0f);
   if (hit.back_facing) {
     if (m.double_sided) {

@@ -51,6 +51,10 @@ struct SurfaceMaterial {
   /// object; negative components mean "base colour darkened".
   Vec3f cap_colour = Vec3f(-1, -1, -1);
   bool draw_cap = true;  ///< draw the cap; if false the cut object is seen hollow
+  /// Wireframe overlay: triangle edges drawn in wire_colour out to this distance (mm, on the surface) on
+  /// each side; 0 = none. Shows the element structure, e.g. the tet faces on a cut through a tet mesh.
+  double wire_width_mm = 0.0;
+  Vec3f wire_colour = Vec3f(0.06f, 0.05f, 0.05f);  ///< linear
 
   /// Skin with the given linear albedo.
   static SurfaceMaterial skin(const Vec3f& albedo = Vec3f(0.56f, 0.34f, 0.25f));

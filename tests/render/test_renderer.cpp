@@ -210,6 +210,25 @@ TEST(Renderer, DirectionalLightOfIntensityOneShowsTheAlbedo) {
   EXPECT_NEAR(centre_linear(scene), 0.25f, 1e-3f);
 }
 
+TEST(Renderer, WireframeDarkensOnlyNearTriangleEdges) {
+  Scene scene = plain_scene();
+  SurfaceMaterial m = matte(Vec3f(0.5f, 0.5f, 0.5f));
+  m.wire_width_mm = 1.0;
+  m.wire_colour = Vec3f(0.1f, 0.1f, 0.1f);
+  scene.add(wall(100), m);  // its diagonal edge runs through the centre
+  scene.camera = Camera::orthographic(Vec3(0, -300, 0), Vec3::Zero(), Vec3::UnitZ(), 20);
+  scene.lights.push_back(Light::directional(Vec3(0, -1, 0), 1.0, 0.0));
+  RenderSettings settings = small_settings(9, 64);
+  const Image image = Renderer(scene).render_linear(scene.camera, settings);
+  // 20 mm view over 9 pixels: the centre pixel (2.2 mm wide) straddles the edge; the corner pixel lies
+  // 9.4 mm from the diagonal.
+  EXPECT_LT(image.at(4, 4, 0), 0.35f);
+  EXPECT_NEAR(image.at(7, 7, 0), 0.5f, 1e-3f);
+  m.wire_width_mm = 0.0;
+  scene.objects[0].material = m;
+  EXPECT_NEAR(centre_linear(scene), 0.5f, 1e-3f);
+}
+
 TEST(Renderer, SphereLightFollowsTheInverseSquareLaw) {
   // A sphere of radiance L and radius r at distance d gives irradiance pi L r^2 / d^2 (normal incidence),
   // so a Lambertian surface of albedo a shows radiance a L r^2 / d^2.
