@@ -13,6 +13,13 @@ class Stopwatch {
   Stopwatch() : m_start(std::chrono::steady_clock::now()) {}
   void restart() { m_start = std::chrono::steady_clock::now(); }
   double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+  /// Seconds since construction or the last lap()/restart(), then restarts.
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - m_start).count();
+    m_start = now;
+    return s;
+  }
 
  private:
   std::chrono::steady_clock::time_point m_start;

@@ -14,6 +14,7 @@ namespace forensim {
 namespace {
 
 constexpr std::int64_t vtk_tetra = 10;
+constexpr std::int64_t vtk_triangle = 5;
 /// Deflate's maximum expansion; bounds what a compressed file of a given size can declare.
 constexpr std::uint64_t max_zlib_ratio = 1032;
 
@@ -109,11 +110,26 @@ bool integer_at(const std::string& bytes, std::size_t i, const TypeInfo& t, std:
   }
 }
 
+/// What a single-piece grid of one cell kind holds.
+struct VtuGrid {
+  std::vector<Vec3> positions;
+  std::vector<Index> cells;  ///< nodes_per_cell indices per cell
+  FieldSet point_fields, cell_fields;
+  std::vector<int> labels;
+};
+
+/// The one cell kind a reader accepts.
+struct CellKind {
+  std::int64_t vtk_type;
+  int nodes;
+  const char* name;  ///< for messages: "tetrahedra (VTK_TETRA = 10)"
+};
+
 class VtuReader {
  public:
   VtuReader(std::string_view bytes, std::string source) : m_bytes(bytes), m_source(std::move(source)) {}
 
-  TetMesh read() {
+  VtuGrid read(const CellKind& kind) {
     m_doc = parse_xml(m_bytes, m_source);
     const XmlElement& root = m_doc.root;
     if (root.name != "VTKFile") fail(root, "root element is <" + root.name + ">, not <VTKFile>");
@@ -162,7 +178,7 @@ class VtuReader {
     const std::size_t points = count(*piece, "NumberOfPoints");
     const std::size_t cells = count(*piece, "NumberOfCells");
 
-    TetMesh mesh;
+    VtuGrid mesh;
     const XmlElement* points_element = piece->child("Points");
     if (!points_element) fail(*piece, "no <Points> element");
     const XmlElement* points_array = points_element->child("DataArray");
@@ -178,11 +194,10 @@ class VtuReader {
     if (!cells_element) {
       if (cells > 0) fail(*piece, "no <Cells> element");
     } else {
-      read_cells(*cells_element, cells, points, mesh);
+      read_cells(*cells_element, cells, points, kind, mesh.cells);
     }
-    if (const XmlElement* data = piece->child("PointData")) read_fields(*data, points, mesh.vertex_fields, nullptr);
-    if (const XmlElement* data = piece->child("CellData")) read_fields(*data, cells, mesh.tet_fields, &mesh.tet_labels);
-    mesh.validate(m_source);
+    if (const XmlElement* data = piece->child("PointData")) read_fields(*data, points, mesh.point_fields, nullptr);
+    if (const XmlElement* data = piece->child("CellData")) read_fields(*data, cells, mesh.cell_fields, &mesh.labels);
     return mesh;
   }
 
@@ -339,33 +354,35 @@ class VtuReader {
     fail(parent, std::string("<") + parent.name + "> has no DataArray named '" + name + "'");
   }
 
-  void read_cells(const XmlElement& element, std::size_t cells, std::size_t points, TetMesh& mesh) const {
+  void read_cells(const XmlElement& element, std::size_t cells, std::size_t points, const CellKind& kind,
+                  std::vector<Index>& out) const {
     const XmlElement& types_array = named_array(element, "types");
     const std::vector<std::int64_t> types = integers(types_array, cells);
     for (std::size_t c = 0; c < cells; ++c) {
-      if (types[c] != vtk_tetra) {
-        fail(types_array, "cell " + std::to_string(c) + " has VTK cell type " + std::to_string(types[c]) +
-                              "; read_vtu reads only tetrahedra (VTK_TETRA = 10)");
+      if (types[c] != kind.vtk_type) {
+        fail(types_array, "cell " + std::to_string(c) + " has VTK cell type " + std::to_string(types[c]) + "; only " +
+                              kind.name + " are read here");
       }
     }
+    const auto n = static_cast<std::size_t>(kind.nodes);
     const XmlElement& offsets_array = named_array(element, "offsets");
     const std::vector<std::int64_t> offsets = integers(offsets_array, cells);
     for (std::size_t c = 0; c < cells; ++c) {
-      if (offsets[c] != static_cast<std::int64_t>(4 * (c + 1))) {
+      if (offsets[c] != static_cast<std::int64_t>(n * (c + 1))) {
         fail(offsets_array, "offset of cell " + std::to_string(c) + " is " + std::to_string(offsets[c]) +
-                                ", expected " + std::to_string(4 * (c + 1)) + " for tetrahedra");
+                                ", expected " + std::to_string(n * (c + 1)) + " for " + kind.name);
       }
     }
     const XmlElement& connectivity_array = named_array(element, "connectivity");
-    const std::vector<std::int64_t> connectivity = integers(connectivity_array, 4 * cells);
-    mesh.tets.resize(cells);
+    const std::vector<std::int64_t> connectivity = integers(connectivity_array, n * cells);
+    out.resize(connectivity.size());
     for (std::size_t i = 0; i < connectivity.size(); ++i) {
       if (connectivity[i] < 0 || static_cast<std::uint64_t>(connectivity[i]) >= points) {
         fail(connectivity_array, "point index " + std::to_string(connectivity[i]) + " of cell " +
-                                     std::to_string(i / 4) + " is out of range (there are " + std::to_string(points) +
+                                     std::to_string(i / n) + " is out of range (there are " + std::to_string(points) +
                                      " points)");
       }
-      mesh.tets[i / 4][i % 4] = static_cast<Index>(connectivity[i]);
+      out[i] = static_cast<Index>(connectivity[i]);
     }
   }
 
@@ -419,7 +436,41 @@ TetMesh read_vtu(const std::filesystem::path& path) {
 }
 
 TetMesh parse_vtu(std::string_view bytes, const std::string& source) {
-  return VtuReader(bytes, source).read();
+  VtuGrid grid = VtuReader(bytes, source).read({vtk_tetra, 4, "tetrahedra (VTK_TETRA = 10)"});
+  TetMesh mesh;
+  mesh.positions = std::move(grid.positions);
+  mesh.tets.resize(grid.cells.size() / 4);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+    for (std::size_t k = 0; k < 4; ++k) mesh.tets[t][k] = grid.cells[4 * t + k];
+  mesh.vertex_fields = std::move(grid.point_fields);
+  mesh.tet_fields = std::move(grid.cell_fields);
+  mesh.tet_labels = std::move(grid.labels);
+  mesh.validate(source);
+  return mesh;
+}
+
+TriMesh read_vtu_surface(const std::filesystem::path& path) {
+  const std::string bytes = read_file(path);
+  return parse_vtu_surface(bytes, path.string());
+}
+
+TriMesh parse_vtu_surface(std::string_view bytes, const std::string& source) {
+  VtuGrid grid = VtuReader(bytes, source).read({vtk_triangle, 3, "triangles (VTK_TRIANGLE = 5)"});
+  TriMesh mesh;
+  mesh.positions = std::move(grid.positions);
+  mesh.triangles.resize(grid.cells.size() / 3);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::size_t k = 0; k < 3; ++k) mesh.triangles[t][k] = grid.cells[3 * t + k];
+  mesh.vertex_fields = std::move(grid.point_fields);
+  mesh.triangle_fields = std::move(grid.cell_fields);
+  mesh.triangle_labels = std::move(grid.labels);
+  auto normals = mesh.vertex_fields.vectors.find("Normals");
+  if (normals != mesh.vertex_fields.vectors.end()) {
+    mesh.normals = std::move(normals->second);
+    mesh.vertex_fields.vectors.erase(normals);
+  }
+  mesh.validate(source);
+  return mesh;
 }
 
 }  // namespace forensim

@@ -1,5 +1,5 @@
 #pragma once
-/// Reading tetrahedral meshes back from VTK XML UnstructuredGrid (.vtu) files: what write_vtu writes and
+/// Reading tetrahedral (and triangle) meshes back from VTK XML UnstructuredGrid (.vtu) files: what write_vtu writes and
 /// the same layouts from ParaView/VTK (versions 0.1, 1.0 and 2.x).
 
 #include <filesystem>
@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "geometry/tet_mesh.hpp"
+#include "geometry/tri_mesh.hpp"
 
 namespace forensim {
 
@@ -22,5 +23,12 @@ namespace forensim {
 TetMesh read_vtu(const std::filesystem::path& path);
 /// read_vtu on file contents already in memory; `source` names them in errors.
 TetMesh parse_vtu(std::string_view bytes, const std::string& source);
+
+/// Reads a single-piece .vtu of triangles (VTK_TRIANGLE, type 5), e.g. a skin written by write_vtu(TriMesh),
+/// in the same layouts and with the same checks as read_vtu: vertex order is kept, the point array "Normals"
+/// becomes the normals, the integer cell array "label" the triangle labels, other arrays fields.
+TriMesh read_vtu_surface(const std::filesystem::path& path);
+/// read_vtu_surface on file contents already in memory.
+TriMesh parse_vtu_surface(std::string_view bytes, const std::string& source);
 
 }  // namespace forensim

@@ -230,6 +230,25 @@ TEST(Vtu, TriangleMeshWritesTriangleCells) {
   } catch (const InputError& e) {
     EXPECT_NE(e.problem().find("VTK cell type 5"), std::string::npos) << e.what();
   }
+  // Read back as a surface in every encoding: same vertices in the same order, normals, labels, fields.
+  for (const Case& c : all_cases()) {
+    SCOPED_TRACE(c.name);
+    const auto each = test::scratch_dir("vtu") / (std::string("skin_") + c.name + ".vtu");
+    write_vtu(each, mesh, c.options);
+    const TriMesh back = read_vtu_surface(each);
+    ASSERT_EQ(back.vertex_count(), mesh.vertex_count());
+    ASSERT_EQ(back.triangles, mesh.triangles);
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      EXPECT_LT((back.positions[v] - mesh.positions[v]).norm(), 1e-6);
+      EXPECT_LT((back.normals[v] - mesh.normals[v]).norm(), 1e-6);
+    }
+    EXPECT_EQ(back.triangle_labels, mesh.triangle_labels);
+    test::expect_same_fields(mesh.vertex_fields, back.vertex_fields);
+  }
+  // A tet file is not a surface.
+  const auto tets = test::scratch_dir("vtu") / "tets.vtu";
+  write_vtu(tets, sample_tet_mesh());
+  EXPECT_THROW(read_vtu_surface(tets), InputError);
 }
 
 TEST(Vtu, RejectsLabelFieldClash) {
