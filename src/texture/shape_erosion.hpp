@@ -1,0 +1,33 @@
+#pragma once
+/// Shape texture erosion of the wound thesis (Klein, chapter 3.3.1, Algorithm 3.1): a 1-pixel-high
+/// minimum filter whose odd width varies per pixel (eq. 3.1), roughening the edge of a wound shape as if
+/// something had scraped over the skin. Widths are in texels: the caller converts from mm on the skin
+/// (width_texels = width_mm * texels_per_mm) so that the edge looks the same at any resolution.
+
+#include <cstdint>
+#include <vector>
+
+#include "image/image.hpp"
+
+namespace forensim {
+
+/// Eq. 3.1: kernelWidth(m) = m + (m mod 2) + 1, an odd width from a positive random integer m.
+int erosion_kernel_width(int m);
+
+/// Per-pixel kernel widths (row-major, width * height): m drawn uniformly from [m_min, m_max] (1 <= m_min
+/// <= m_max <= 4096) by hash of (seed, pixel index), then eq. 3.1. (The thesis's "kernel width varying
+/// between 3 and 5" and "between 3 and 10" are such ranges of m.) Throws InputError for a bad range.
+std::vector<int> random_erosion_widths(int width, int height, int m_min, int m_max, std::uint64_t seed);
+
+/// Direction of the 1-pixel-high kernel: along rows (the thesis's N x 1 kernel) or along columns.
+enum class ErosionAxis { x, y };
+
+/// Algorithm 3.1 on channel 0 of `shape`: out(x, y) = min of shape over the widths[y * W + x] pixels centred
+/// on (x, y) along the axis; pixels beyond the border count as the highest value (ignored). Returns a
+/// single-channel data image. widths must hold width * height odd positive values (InputError otherwise).
+Image erode_shape(const Image& shape, const std::vector<int>& widths, ErosionAxis axis = ErosionAxis::x);
+
+/// erode_shape with random_erosion_widths(shape size, m_min, m_max, seed).
+Image erode_shape(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis = ErosionAxis::x);
+
+}  // namespace forensim

@@ -1,0 +1,130 @@
+#include "texture/value_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "core/random.hpp"
+#include "texture/image_ops.hpp"
+
+namespace forensim {
+
+namespace {
+
+// Sampling positions of eqs. 3.2 / 3.3 along one axis for coordinate p, and the blend value (p - s1) / period.
+struct Taps4 {
+  int s[4];
+  double blend;
+};
+
+Taps4 axis_taps(int p, long long period, int size) {
+  Taps4 t{};
+  const long long s1 = (p / period) * period;
+  const long long s0 = s1 < period ? ((size - period + s1) % size + size) % size : s1 - period;
+  const long long s2 = (s1 + period) % size;
+  const long long s3 = (s2 + period) % size;
+  t.s[0] = static_cast<int>(s0);
+  t.s[1] = static_cast<int>(s1);
+  t.s[2] = static_cast<int>(s2);
+  t.s[3] = static_cast<int>(s3);
+  t.blend = static_cast<double>(p - s1) / static_cast<double>(period);
+  return t;
+}
+
+}  // namespace
+
+double noise_bias(double v, double b) {
+  v = std::clamp(v, 0.0, 1.0);
+  b = std::clamp(b, 0.0, 1.0);
+  // v / ((1/b - 2)(1 - v) + 1), multiplied through by b so that b = 0 is defined.
+  const double denominator = (1.0 - 2.0 * b) * (1.0 - v) + b;
+  if (denominator <= 0.0) return v >= 1.0 ? 1.0 : 0.0;
+  return v * b / denominator;
+}
+
+double noise_gain(double v, double g) {
+  v = std::clamp(v, 0.0, 1.0);
+  if (v < 0.5) return noise_bias(v * 2.0, g) / 2.0;
+  return noise_bias(v * 2.0 - 1.0, 1.0 - g) / 2.0 + 0.5;
+}
+
+Image value_noise_base(int width, int height, std::uint64_t seed) {
+  Image base(width, height, 1, 0.0f, PixelEncoding::data);
+  parallel_for(
+      0, static_cast<std::size_t>(height),
+      [&](std::size_t y) {
+        for (int x = 0; x < width; ++x)
+          base.at(x, static_cast<int>(y)) = static_cast<float>(hash_uniform(
+              seed, static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(x)));
+      },
+      16);
+  return base;
+}
+
+Image value_noise(const Image& base, const ValueNoiseParams& params) {
+  const std::string source = "value noise parameters";
+  require_input(base.channels() == 1 || base.empty(), "value noise base array", "",
+                "needs one channel, has " + std::to_string(base.channels()));
+  require_input(params.octaves >= 1 && params.octaves <= 30, source, "octaves",
+                "must be in 1..30, is " + std::to_string(params.octaves));
+  require_input(params.first_octave >= 0 && params.first_octave + params.octaves <= 31, source, "first_octave",
+                "first_octave + octaves must be in 1..31");
+  require_input(std::isfinite(params.persistence) && params.persistence > 0.0, source, "persistence",
+                "must be a finite positive number");
+  require_input(params.bias >= 0.0 && params.bias <= 1.0, source, "bias", "must be in [0, 1]");
+  require_input(params.gain >= 0.0 && params.gain <= 1.0, source, "gain", "must be in [0, 1]");
+  const int width = base.width(), height = base.height();
+  Image result(width, height, 1, 0.0f, PixelEncoding::data);
+  if (base.empty()) return result;
+
+  // Amplitudes in loop order (largest period first), lines 4 to 8.
+  std::vector<double> amplitude(static_cast<std::size_t>(params.octaves));
+  double a = 1.0, total_amplitude = 0.0;
+  for (int k = 0; k < params.octaves; ++k) {
+    a *= params.persistence;
+    amplitude[static_cast<std::size_t>(k)] = a;
+    total_amplitude += a;
+  }
+  require_input(std::isfinite(total_amplitude) && total_amplitude > 0.0, source, "persistence",
+                "gives a non-finite or zero total amplitude");
+
+  const float* values = base.data().data();
+  const auto value_at = [&](int x, int y) {
+    return static_cast<double>(
+        values[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]);
+  };
+  parallel_for(
+      0, static_cast<std::size_t>(height),
+      [&](std::size_t row) {
+        const int y = static_cast<int>(row);
+        std::vector<double> sum(static_cast<std::size_t>(width), 0.0);
+        for (int k = 0; k < params.octaves; ++k) {
+          const int octave = params.first_octave + params.octaves - 1 - k;  // line 9: octaves downto 0
+          const long long period = 1LL << octave;                           // line 10
+          const Taps4 ty = axis_taps(y, period, height);                    // line 13
+          for (int x = 0; x < width; ++x) {
+            const Taps4 tx = axis_taps(x, period, width);  // line 14
+            double rows[4];
+            for (int j = 0; j < 4; ++j)  // lines 15 to 18
+              rows[j] = cubic_interpolate(value_at(tx.s[0], ty.s[j]), value_at(tx.s[1], ty.s[j]),
+                                          value_at(tx.s[2], ty.s[j]), value_at(tx.s[3], ty.s[j]), tx.blend);
+            sum[static_cast<std::size_t>(x)] += cubic_interpolate(rows[0], rows[1], rows[2], rows[3], ty.blend) *
+                                                amplitude[static_cast<std::size_t>(k)];
+          }
+        }
+        for (int x = 0; x < width; ++x) {  // lines 20 to 22
+          const double v = std::clamp(sum[static_cast<std::size_t>(x)] / total_amplitude, 0.0, 1.0);
+          result.at(x, y) = static_cast<float>(noise_gain(noise_bias(v, params.bias), params.gain));
+        }
+      },
+      4);
+  return result;
+}
+
+Image value_noise(int width, int height, const ValueNoiseParams& params) {
+  return value_noise(value_noise_base(width, height, params.seed), params);
+}
+
+}  // namespace forensim
