@@ -1,6 +1,8 @@
 #include "texture/solid_noise.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "core/random.hpp"
@@ -63,6 +65,50 @@ double GradientNoise3::fractal(const Vec3& p, int octaves, double persistence) c
     frequency *= 2.0;
   }
   return norm > 0.0 ? sum / norm : 0.0;
+}
+
+WorleyNoise3::WorleyNoise3(std::uint64_t seed, double jitter)
+    : m_seed(mix64(seed ^ 0x776f726c6579ULL)), m_jitter(std::clamp(jitter, 0.0, 1.0)) {}
+
+Vec3 WorleyNoise3::feature_point(long long x, long long y, long long z, std::uint64_t& cell) const {
+  cell = mix64(m_seed ^ mix64(static_cast<std::uint64_t>(x) * 0x9E3779B1ULL ^
+                              mix64(static_cast<std::uint64_t>(y) * 0x85EBCA77ULL ^ static_cast<std::uint64_t>(z))));
+  const double jx = hash_uniform(cell, 1), jy = hash_uniform(cell, 2), jz = hash_uniform(cell, 3);
+  const double lo = 0.5 - 0.5 * m_jitter;
+  return Vec3(static_cast<double>(x) + lo + m_jitter * jx, static_cast<double>(y) + lo + m_jitter * jy,
+              static_cast<double>(z) + lo + m_jitter * jz);
+}
+
+CellularSample WorleyNoise3::evaluate(const Vec3& p) const {
+  const auto cx = static_cast<long long>(std::floor(p.x()));
+  const auto cy = static_cast<long long>(std::floor(p.y()));
+  const auto cz = static_cast<long long>(std::floor(p.z()));
+  double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+  CellularSample out;
+  for (long long dz = -1; dz <= 1; ++dz) {
+    for (long long dy = -1; dy <= 1; ++dy) {
+      for (long long dx = -1; dx <= 1; ++dx) {
+        std::uint64_t cell = 0;
+        const Vec3 q = feature_point(cx + dx, cy + dy, cz + dz, cell);
+        const double d = (q - p).squaredNorm();
+        if (d < d1) {
+          d2 = d1;
+          d1 = d;
+          out.cell = cell;
+          out.nearest = q;
+        } else if (d < d2) {
+          d2 = d;
+        }
+      }
+    }
+  }
+  out.f1 = std::sqrt(d1);
+  out.f2 = std::sqrt(d2);
+  return out;
+}
+
+double WorleyNoise3::cell_value(std::uint64_t cell, std::uint64_t channel) const {
+  return hash_uniform(cell, 100 + channel);
 }
 
 }  // namespace forensim

@@ -40,3 +40,36 @@ TEST(GradientNoise3, SeedChangesTheFieldAndIsDeterministic) {
   EXPECT_NE(a.evaluate(p), b.evaluate(p));
   EXPECT_NEAR(a.fractal(p, 1), a.evaluate(p), 1e-15);
 }
+
+TEST(WorleyNoise3, DistancesMatchABruteForceSearchOfFeaturePoints) {
+  const WorleyNoise3 noise(3, 0.5);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 p(0.37 * i - 20.0, 0.11 * i + 0.2, std::cos(0.05 * i) * 7.0);
+    const CellularSample s = noise.evaluate(p);
+    EXPECT_GE(s.f2, s.f1);
+    EXPECT_NEAR((s.nearest - p).norm(), s.f1, 1e-12);
+    // Feature points lie in their cell's central half with jitter 0.5, so F1 <= the distance to the own cell's
+    // farthest possible point.
+    EXPECT_LE(s.f1, std::sqrt(3.0) * 0.75 + 1e-12);
+    // The nearest point belongs to the same cell id when found again from a point next to it.
+    const CellularSample near_point = noise.evaluate(s.nearest + Vec3(1e-6, 0, 0));
+    EXPECT_EQ(near_point.cell, s.cell);
+    EXPECT_NEAR(near_point.f1, 1e-6, 1e-9);
+  }
+}
+
+TEST(WorleyNoise3, IsContinuousDeterministicAndSeeded) {
+  const WorleyNoise3 a(1), a2(1), b(2);
+  double sum = 0.0;
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 p(0.173 * i, -0.07 * i, 0.031 * i + 2.0);
+    const CellularSample s = a.evaluate(p);
+    EXPECT_EQ(s.f1, a2.evaluate(p).f1);
+    EXPECT_LT(std::abs(a.evaluate(p + Vec3(1e-6, 1e-6, 0)).f1 - s.f1), 2e-6);  // F1 is 1-Lipschitz
+    sum += std::abs(s.f1 - b.evaluate(p).f1);
+    const double v = a.cell_value(s.cell);
+    EXPECT_GE(v, 0.0);
+    EXPECT_LT(v, 1.0);
+  }
+  EXPECT_GT(sum, 10.0);  // another seed moves the points
+}
