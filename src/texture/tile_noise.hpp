@@ -18,7 +18,9 @@ namespace forensim {
 double tile_perlin_noise(const Vec2& p, int period_x, int period_y, std::uint64_t seed);
 
 /// Distances (in cells) from p to its nearest (f1) and second nearest (f2) feature point; one jittered
-/// feature point per cell, periodic over period_x x period_y cells (>= 1 each). f1 <= f2; both continuous.
+/// feature point per cell, periodic over period_x x period_y cells (>= 1 each). The point of cell (i, j)
+/// (wrapped into the period, key = j * period_x + i) lies at (i + hash_uniform(seed, key, 1), j +
+/// hash_uniform(seed, key, 2)). f1 <= f2; both continuous.
 struct WorleyDistances {
   double f1 = 0.0;
   double f2 = 0.0;

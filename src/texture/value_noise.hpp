@@ -24,8 +24,10 @@ namespace forensim {
 /// 0 below v = 1.
 double noise_bias(double v, double b);
 
-/// Gain of eq. 3.7: bias(2v, g) / 2 for v < 0.5, else bias(2v - 1, 1 - g) / 2 + 0.5 (contrast); gain(v, 0.5)
-/// = v, gain(0, g) = 0, gain(0.5, g) = 0.5, gain(1, g) = 1.
+/// Gain of eq. 3.7 as printed: bias(2v, g) / 2 for v < 0.5, else bias(2v - 1, 1 - g) / 2 + 0.5 (contrast);
+/// gain(v, 0.5) = v, gain(0, g) = 0, gain(0.5, g) = 0.5, gain(1, g) = 1. This equals Perlin's gain with
+/// 1 - g, so g < 0.5 steepens the midrange and g > 0.5 flattens it (the thesis's prose says the opposite,
+/// but its parameters, e.g. gain 0.02 for a near-binary mask, fit the equation, which is kept).
 double noise_gain(double v, double g);
 
 /// Parameters of Algorithm 3.2.
