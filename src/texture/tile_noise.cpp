@@ -29,9 +29,22 @@ double fade(double t) {
   return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
+// 256 unit gradients evenly spread over the circle; a lattice point picks one by hash.
+struct GradientTable {
+  double x[256], y[256];
+  GradientTable() {
+    for (int i = 0; i < 256; ++i) {
+      x[i] = std::cos(two_pi * (i + 0.5) / 256.0);
+      y[i] = std::sin(two_pi * (i + 0.5) / 256.0);
+    }
+  }
+};
+
 double gradient_dot(long long ix, long long iy, int period_x, int period_y, std::uint64_t seed, double dx, double dy) {
-  const double angle = two_pi * hash_uniform(seed, cell_key(ix, iy, period_x, period_y), 0x9E37);
-  return std::cos(angle) * dx + std::sin(angle) * dy;
+  static const GradientTable table;
+  const std::size_t g =
+      static_cast<std::size_t>(mix64(mix64(seed ^ 0x9E37ull) + cell_key(ix, iy, period_x, period_y)) >> 56);
+  return table.x[g] * dx + table.y[g] * dy;
 }
 
 void require_period(int period_x, int period_y, const char* what) {

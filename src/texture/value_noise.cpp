@@ -91,32 +91,59 @@ Image value_noise(const Image& base, const ValueNoiseParams& params) {
                 "gives a non-finite or zero total amplitude");
 
   const float* values = base.data().data();
-  const auto value_at = [&](int x, int y) {
-    return static_cast<double>(
-        values[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]);
-  };
+  const std::size_t w = static_cast<std::size_t>(width);
+  // Per octave, the horizontal cubics of lines 15 to 18 depend only on (base row, x): compute them once
+  // for the base rows the octave uses, then each texel needs one vertical cubic (line 19). Same arithmetic
+  // in the same order as the algorithm as printed, so the same values.
+  std::vector<double> sum(w * static_cast<std::size_t>(height), 0.0);
+  std::vector<Taps4> x_taps(w), y_taps(static_cast<std::size_t>(height));
+  std::vector<double> horizontal;
+  std::vector<std::uint8_t> row_used(static_cast<std::size_t>(height));
+  for (int k = 0; k < params.octaves; ++k) {
+    const int octave = params.first_octave + params.octaves - 1 - k;  // line 9: octaves downto 0
+    const long long period = 1LL << octave;                           // line 10
+    for (int x = 0; x < width; ++x) x_taps[static_cast<std::size_t>(x)] = axis_taps(x, period, width);  // line 14
+    std::fill(row_used.begin(), row_used.end(), std::uint8_t{0});
+    for (int y = 0; y < height; ++y) {
+      const Taps4 ty = axis_taps(y, period, height);  // line 13
+      y_taps[static_cast<std::size_t>(y)] = ty;
+      for (int j = 0; j < 4; ++j) row_used[static_cast<std::size_t>(ty.s[j])] = 1;
+    }
+    horizontal.assign(w * static_cast<std::size_t>(height), 0.0);
+    parallel_for(
+        0, static_cast<std::size_t>(height),
+        [&](std::size_t row) {
+          if (!row_used[row]) return;
+          const float* line = values + row * w;
+          double* out = horizontal.data() + row * w;
+          for (std::size_t x = 0; x < w; ++x) {
+            const Taps4& tx = x_taps[x];
+            out[x] = cubic_interpolate(line[tx.s[0]], line[tx.s[1]], line[tx.s[2]], line[tx.s[3]], tx.blend);
+          }
+        },
+        4);
+    const double amplitude_k = amplitude[static_cast<std::size_t>(k)];
+    parallel_for(
+        0, static_cast<std::size_t>(height),
+        [&](std::size_t row) {
+          const Taps4& ty = y_taps[row];
+          const double* r0 = horizontal.data() + static_cast<std::size_t>(ty.s[0]) * w;
+          const double* r1 = horizontal.data() + static_cast<std::size_t>(ty.s[1]) * w;
+          const double* r2 = horizontal.data() + static_cast<std::size_t>(ty.s[2]) * w;
+          const double* r3 = horizontal.data() + static_cast<std::size_t>(ty.s[3]) * w;
+          double* acc = sum.data() + row * w;
+          for (std::size_t x = 0; x < w; ++x)
+            acc[x] += cubic_interpolate(r0[x], r1[x], r2[x], r3[x], ty.blend) * amplitude_k;  // line 19
+        },
+        4);
+  }
   parallel_for(
       0, static_cast<std::size_t>(height),
       [&](std::size_t row) {
-        const int y = static_cast<int>(row);
-        std::vector<double> sum(static_cast<std::size_t>(width), 0.0);
-        for (int k = 0; k < params.octaves; ++k) {
-          const int octave = params.first_octave + params.octaves - 1 - k;  // line 9: octaves downto 0
-          const long long period = 1LL << octave;                           // line 10
-          const Taps4 ty = axis_taps(y, period, height);                    // line 13
-          for (int x = 0; x < width; ++x) {
-            const Taps4 tx = axis_taps(x, period, width);  // line 14
-            double rows[4];
-            for (int j = 0; j < 4; ++j)  // lines 15 to 18
-              rows[j] = cubic_interpolate(value_at(tx.s[0], ty.s[j]), value_at(tx.s[1], ty.s[j]),
-                                          value_at(tx.s[2], ty.s[j]), value_at(tx.s[3], ty.s[j]), tx.blend);
-            sum[static_cast<std::size_t>(x)] += cubic_interpolate(rows[0], rows[1], rows[2], rows[3], ty.blend) *
-                                                amplitude[static_cast<std::size_t>(k)];
-          }
-        }
-        for (int x = 0; x < width; ++x) {  // lines 20 to 22
-          const double v = std::clamp(sum[static_cast<std::size_t>(x)] / total_amplitude, 0.0, 1.0);
-          result.at(x, y) = static_cast<float>(noise_gain(noise_bias(v, params.bias), params.gain));
+        for (std::size_t x = 0; x < w; ++x) {  // lines 20 to 22
+          const double v = std::clamp(sum[row * w + x] / total_amplitude, 0.0, 1.0);
+          result.at(static_cast<int>(x), static_cast<int>(row)) =
+              static_cast<float>(noise_gain(noise_bias(v, params.bias), params.gain));
         }
       },
       4);
