@@ -69,7 +69,7 @@ inline double slab_error(int nx, int steps, double biot, double fourier_end, boo
   const double d_mm2 = d_m2 * 1e6;
   const double h_m = biot * d_mm2 / length * 1e-3;  // m/s
   const double t_end = fourier_end * length * length / d_mm2;
-  SlabProblem p = make_slab(nx, length, 0.5, h_m, 0.0);
+  SlabProblem p = make_slab(nx, length, length / nx, h_m, 0.0);  // cubic cells
   DiffusionSettings settings;
   settings.lumped_mass = lumped;
   DiffusionSolver solver(p.mesh, {}, p.faces, settings);
