@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "texture/convex_hull.hpp"
 #include "texture/distance_transform.hpp"
@@ -42,6 +43,7 @@ const Image& wound_mask() {
   return mask;
 }
 
+// Arguments: octaves, worker threads.
 void BM_ValueNoise(benchmark::State& state) {
   ValueNoiseParams params;
   params.octaves = static_cast<int>(state.range(0));
@@ -49,17 +51,24 @@ void BM_ValueNoise(benchmark::State& state) {
   params.bias = 0.54;
   params.gain = 0.21;
   const Image base = value_noise_base(size, size, 1);
+  const int previous = thread_count();
+  set_thread_count(static_cast<int>(state.range(1)));
   for (auto _ : state) benchmark::DoNotOptimize(value_noise(base, params).data().data());
+  set_thread_count(previous);
   state.SetItemsProcessed(state.iterations() * size * size);
 }
-BENCHMARK(BM_ValueNoise)->Arg(5)->Arg(10)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ValueNoise)->Args({5, 1})->Args({5, 2})->Args({10, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Argument: worker threads.
 void BM_SquaredDistanceTransform(benchmark::State& state) {
   const std::vector<std::uint8_t> mask = binary_mask(wound_mask());
+  const int previous = thread_count();
+  set_thread_count(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(squared_distance_transform(mask, size, size).data());
+  set_thread_count(previous);
   state.SetItemsProcessed(state.iterations() * size * size);
 }
-BENCHMARK(BM_SquaredDistanceTransform)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SquaredDistanceTransform)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_SignedDistance(benchmark::State& state) {
   const Image& mask = wound_mask();

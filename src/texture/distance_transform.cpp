@@ -87,13 +87,19 @@ std::vector<double> squared_distance_transform(const std::vector<std::uint8_t>& 
   for (std::size_t i = 0; i < count; ++i) grid[i] = feature[i] ? 0.0 : infinity;
   if (count == 0) return grid;
   const std::size_t w = static_cast<std::size_t>(width);
-  // Columns: each is independent; 16-column chunks so the scratch is allocated once per chunk.
+  // Columns: each is independent. A chunk of up to 16 columns is gathered row by row into contiguous
+  // scratch (strided access inside the envelope search is slow), transformed, and scattered back.
   parallel_for_chunks(
       0, w,
       [&](std::size_t begin, std::size_t end) {
-        std::vector<int> v(static_cast<std::size_t>(height));
-        std::vector<double> z(static_cast<std::size_t>(height) + 1), d(static_cast<std::size_t>(height));
-        for (std::size_t x = begin; x < end; ++x) transform_line(grid.data() + x, w, height, v, z, d);
+        const std::size_t h = static_cast<std::size_t>(height), n = end - begin;
+        std::vector<int> v(h);
+        std::vector<double> z(h + 1), d(h), columns(n * h);
+        for (std::size_t y = 0; y < h; ++y)
+          for (std::size_t c = 0; c < n; ++c) columns[c * h + y] = grid[y * w + begin + c];
+        for (std::size_t c = 0; c < n; ++c) transform_line(columns.data() + c * h, 1, height, v, z, d);
+        for (std::size_t y = 0; y < h; ++y)
+          for (std::size_t c = 0; c < n; ++c) grid[y * w + begin + c] = columns[c * h + y];
       },
       16);
   parallel_for_chunks(
