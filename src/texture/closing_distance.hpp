@@ -1,5 +1,5 @@
 #pragma once
-/// Closing distance of a wound (Klein, wound thesis, chapter 4.3.5, Algorithm 4.3): the largest distance
+/// Closing distance of a wound (Linnenbank 2015, chapter 4.3.5, Algorithm 4.3): the largest distance
 /// between two vertices of the wound's convex hull, i.e. the hull's diameter (the thesis's "vector from edge
 /// e to edge f" runs between hull vertices). The maturation phase shrinks the wound over half of it
 /// (eq. 4.8). Units are those of the points (texels or mm on the skin).

@@ -1,5 +1,5 @@
 #pragma once
-/// Convex hull of 2D points, for the wound outline the user draws on the skin (Klein, wound thesis, chapter
+/// Convex hull of 2D points, for the wound outline the user draws on the skin (Linnenbank 2015, chapter
 /// 4.2.1): Algorithm 4.1 (De Berg et al., upper and lower hulls with the right-turn test of eq. 4.4), and
 /// Andrew's monotone chain as an independent reference. Both return the hull's vertices without collinear or
 /// duplicate points, in clockwise order in a y-up frame (negative signed area), starting at the

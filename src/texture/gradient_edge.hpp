@@ -1,5 +1,5 @@
 #pragma once
-/// Gradient edges of the wound thesis (Klein, chapter 3.3.3): a colour gradient drawn inward or outward from
+/// Gradient edges of the wound thesis (Linnenbank 2015, chapter 3.3.3): a colour gradient drawn inward or outward from
 /// the border of a wound shape over a thickness, for the red glow around a wound (outward, thickness 100 at
 /// the thesis's texture scale) and the darker rim of a scab (inward). Algorithm 3.4 takes, for every texel,
 /// its distance to the nearest hull edge (Algorithm 3.3); draw_gradient_edge_hull does exactly that, and

@@ -1,5 +1,5 @@
 #pragma once
-/// Image helpers for the wound texture techniques (Klein, wound thesis, chapters 3 and 4): the cubic of
+/// Image helpers for the wound texture techniques (Linnenbank 2015, chapters 3 and 4): the cubic of
 /// eq. 3.4, bicubic and bilinear sampling with clamp or wrap, and the blend modes the key positions use
 /// (multiply, screen = eq. 4.7, overlay, lerp by a mask = eqs. 4.5 and 4.6). Images follow image/image.hpp:
 /// rows top to bottom, continuous pixel coordinates with pixel centres at i + 0.5.

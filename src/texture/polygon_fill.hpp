@@ -1,5 +1,5 @@
 #pragma once
-/// Filling polygons into shape textures: the wound thesis's hull fill (Klein, chapter 4.2.2, Algorithm 4.2:
+/// Filling polygons into shape textures: the wound thesis's hull fill (Linnenbank 2015, chapter 4.2.2, Algorithm 4.2:
 /// every texel in the hull's bounding box tested against every edge with eq. 4.4), and a general scanline
 /// fill of polygons with several rings (holes, self-intersections) under the even-odd or non-zero rule,
 /// optionally anti-aliased. Polygons are in continuous texel coordinates (texel (x, y) covers [x, x + 1) x

@@ -1,5 +1,5 @@
 #pragma once
-/// Shape texture erosion of the wound thesis (Klein, chapter 3.3.1, Algorithm 3.1): a 1-pixel-high
+/// Shape texture erosion of the wound thesis (Linnenbank 2015, chapter 3.3.1, Algorithm 3.1): a 1-pixel-high
 /// minimum filter whose odd width varies per pixel (eq. 3.1), roughening the edge of a wound shape as if
 /// something had scraped over the skin. Widths are in texels: the caller converts from mm on the skin
 /// (width_texels = width_mm * texels_per_mm) so that the edge looks the same at any resolution.

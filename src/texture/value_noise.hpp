@@ -1,5 +1,6 @@
 #pragma once
-/// Value noise exactly as the wound thesis specifies it (Klein, chapter 3.3.2, Algorithm 3.2): one seeded
+/// Value noise exactly as the wound thesis specifies it (K. Linnenbank, "Real-time simulation of abrasion wound
+/// healing", MSc thesis, Utrecht University 2015; chapter 3.3.2, Algorithm 3.2): one seeded
 /// base array of uniform [0, 1) values the size of the texture; each octave i samples it on a lattice of
 /// period 2^i texels with the bicubic of eq. 3.4 (sampling positions of eqs. 3.2 and 3.3, wrapping around
 /// the texture edges), weighted by an amplitude multiplied by the persistence before every octave (largest
