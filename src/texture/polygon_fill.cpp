@@ -100,8 +100,10 @@ Image fill_polygon(int width, int height, const std::vector<std::vector<Vec2>>& 
   for (std::size_t r = 0; r < rings.size(); ++r) {
     const std::vector<Vec2>& ring = rings[r];
     for (std::size_t i = 0; i < ring.size(); ++i) {
-      require_input(std::isfinite(ring[i][0]) && std::isfinite(ring[i][1]), "polygon",
-                    "ring " + std::to_string(r) + " vertex " + std::to_string(i), "is not finite");
+      // Bounded so that edge slopes stay finite (a NaN crossing would break the scanline sort).
+      require_input(std::abs(ring[i][0]) <= 1e9 && std::abs(ring[i][1]) <= 1e9, "polygon",
+                    "ring " + std::to_string(r) + " vertex " + std::to_string(i),
+                    "is not finite or lies beyond 1e9 texels");
       if (ring.size() >= 2) edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
     }
   }

@@ -28,7 +28,8 @@ enum class FillRule { even_odd, non_zero };
 /// `antialias` the value is instead the fraction of the texel covered (exact along x, `subsamples` sample
 /// lines per texel along y, 1..256). Crossings on a scanline use half-open rules, so a centre is inside
 /// exactly when a ray from it towards +x crosses the rings an odd number of times (even-odd) or with a
-/// non-zero signed count (non-zero). Rows in parallel. Throws InputError for non-finite vertices or bad sizes.
+/// non-zero signed count (non-zero). Rows in parallel. Throws InputError for vertices that are not finite or
+/// beyond 1e9 texels, and for bad sizes.
 Image fill_polygon(int width, int height, const std::vector<std::vector<Vec2>>& rings,
                    FillRule rule = FillRule::non_zero, bool antialias = false, int subsamples = 16);
 

@@ -129,6 +129,7 @@ TEST(PolygonFill, HullFillAlgorithm42MatchesScanlineForBothOrientations) {
 
 TEST(PolygonFill, RejectsBadInputAndIsDeterministic) {
   EXPECT_THROW(fill_polygon(4, 4, {{{0, 0}, {1, std::nan("")}, {2, 0}}}), InputError);
+  EXPECT_THROW(fill_polygon(4, 4, {{{0, 0}, {1e300, 1e300}, {-1e300, 2}}}), InputError);
   EXPECT_THROW(fill_polygon(4, 4, {{{0, 0}, {1, 1}, {2, 0}}}, FillRule::non_zero, true, 0), InputError);
   RandomStream rng(2, 0);
   const std::vector<Vec2> ring = random_polygon(rng, 30, 100, 80, 70);
