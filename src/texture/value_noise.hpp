@@ -33,7 +33,7 @@ double noise_gain(double v, double g);
 
 /// Parameters of Algorithm 3.2.
 struct ValueNoiseParams {
-  int octaves = 5;           ///< number of octaves, 1..30 (the thesis's "octaves downto 0" loop)
+  int octaves = 5;  ///< number of octaves, 1..30; the thesis's "octaves downto 0" loop read as octaves - 1 downto 0
   double persistence = 0.5;  ///< amplitude factor per octave, > 0 (the thesis uses 0.09 to 1.0)
   double bias = 0.5;         ///< eq. 3.6, in [0, 1]; 0.5 = unchanged
   double gain = 0.5;         ///< eq. 3.7, in [0, 1]; 0.5 = unchanged
