@@ -69,7 +69,16 @@ struct CorotationalSolver::Impl {
   SparseMatrix system;
   std::vector<std::ptrdiff_t> masked_entries;  // value indices zeroed for fixed dofs
   std::vector<std::ptrdiff_t> fixed_diagonals;
-  std::unique_ptr<SparseSpdSolver> solver;
+  std::unique_ptr<SparseSpdSolver> dynamic_solver;  // created on first use, analysed once
+  std::unique_ptr<SparseSpdSolver> static_solver;
+
+  SparseSpdSolver& get_solver(std::unique_ptr<SparseSpdSolver>& slot, SparseSolverKind kind) {
+    if (!slot) {
+      slot = make_sparse_solver(kind, settings.cg_tolerance);
+      slot->analyse(system);
+    }
+    return *slot;
+  }
   std::vector<Mat3> rotations;
 
   Mat12 stiffness(std::size_t t) const {
@@ -245,8 +254,6 @@ CorotationalSolver::CorotationalSolver(const TetMesh& rest_mesh, const ElasticMa
   s.pattern = SparsityPattern(s.tets, s.node_count, 3);
   s.system = s.pattern.make_matrix();
   s.update_fixed();
-  s.solver = make_sparse_solver(settings.solver, settings.cg_tolerance);
-  s.solver->analyse(s.system);
 }
 
 CorotationalSolver::~CorotationalSolver() = default;
@@ -295,7 +302,8 @@ void CorotationalSolver::step(ElasticState& state, double dt_s) {
   const double alpha = s.settings.rayleigh_alpha;
   const double beta = s.settings.rayleigh_beta;
   s.assemble(1.0 + dt_s * alpha, dt_s * beta + dt_s * dt_s);
-  s.solver->factor(s.system);
+  SparseSpdSolver& solver = s.get_solver(s.dynamic_solver, s.settings.solver);
+  solver.factor(s.system);
   Eigen::VectorXd rhs = dt_s * s.forces(state.positions);
   Eigen::VectorXd v(static_cast<Eigen::Index>(3 * s.node_count));
   for (std::size_t n = 0; n < s.node_count; ++n) {
@@ -303,7 +311,7 @@ void CorotationalSolver::step(ElasticState& state, double dt_s) {
     v.segment<3>(static_cast<Eigen::Index>(3 * n)) = state.velocities[n];
   }
   s.zero_fixed(rhs);
-  s.solver->solve(rhs, v);
+  solver.solve(rhs, v);
   for (std::size_t n = 0; n < s.node_count; ++n) {
     state.velocities[n] = v.segment<3>(static_cast<Eigen::Index>(3 * n));
     state.positions[n] += dt_s * state.velocities[n];
@@ -321,11 +329,12 @@ int CorotationalSolver::solve_quasi_static(ElasticState& state) {
     s.update_rotations(state.positions);
     if (eps < 0.0) eps = s.settings.quasi_static_regularisation * s.softest_ratio;
     s.assemble(eps, 1.0);
-    s.solver->factor(s.system);
+    SparseSpdSolver& solver = s.get_solver(s.static_solver, s.settings.quasi_static_solver);
+    solver.factor(s.system);
     Eigen::VectorXd rhs = s.forces(state.positions);
     s.zero_fixed(rhs);
     Eigen::VectorXd dx = Eigen::VectorXd::Zero(rhs.size());
-    s.solver->solve(rhs, dx);
+    solver.solve(rhs, dx);
     // Backtracking on the potential energy: the warped stiffness is not the exact tangent (it lacks the
     // derivative of R), so full steps can overshoot where shrinkage pre-stresses stiff and soft tets
     // against each other. dx is a descent direction (K' + eps M is SPD), so halving always helps.
