@@ -397,4 +397,17 @@ bool CorotationalSolver::node_fixed(Index n) const {
   return n >= 0 && static_cast<std::size_t>(n) < m_impl->node_count && m_impl->fixed[static_cast<std::size_t>(n)] != 0;
 }
 
+std::vector<Vec3> shrink_quasi_static(const TetMesh& mesh, const ElasticMaterials& materials,
+                                      const std::vector<double>& tet_volume_ratio) {
+  require_input(tet_volume_ratio.size() == mesh.tet_count(), source, "tet volume ratios",
+                "wrong size " + std::to_string(tet_volume_ratio.size()));
+  CorotationalSolver solver(mesh, materials);
+  std::vector<double> strain(tet_volume_ratio.size());
+  for (std::size_t t = 0; t < strain.size(); ++t) strain[t] = shrinkage_strain(tet_volume_ratio[t]);
+  solver.set_tet_shrinkage_strain(strain);
+  ElasticState state = solver.rest_state();
+  solver.solve_quasi_static(state);
+  return state.positions;
+}
+
 }  // namespace forensim

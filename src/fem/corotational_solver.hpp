@@ -127,4 +127,9 @@ class CorotationalSolver {
   std::unique_ptr<Impl> m_impl;
 };
 
+/// One-off use: static shape of `mesh` (rest shape) whose tets shrink to the volume ratios `tet_volume_ratio`
+/// (#T, S_v each), bone per RigidMode::fixed. Returns the #V node positions, mm.
+std::vector<Vec3> shrink_quasi_static(const TetMesh& mesh, const ElasticMaterials& materials,
+                                      const std::vector<double>& tet_volume_ratio);
+
 }  // namespace forensim

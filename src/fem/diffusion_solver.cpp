@@ -327,4 +327,14 @@ const SparseMatrix& DiffusionSolver::system_matrix() const {
   return m_impl->system;
 }
 
+double diffuse(const TetMesh& mesh, const std::vector<RobinFace>& faces, double diffusivity_m2_per_s, double dt_s,
+               int steps, std::vector<double>& values) {
+  const auto active = diffusion_active_tets(mesh);
+  DiffusionSolver solver(mesh, active, faces);
+  solver.set_tet_diffusivity(std::vector<double>(mesh.tet_count(), diffusivity_m2_per_s));
+  double outflow = 0.0;
+  for (int s = 0; s < steps; ++s) outflow += solver.step(values, dt_s).boundary_outflow;
+  return outflow;
+}
+
 }  // namespace forensim

@@ -112,4 +112,10 @@ class DiffusionSolver {
   std::unique_ptr<Impl> m_impl;
 };
 
+/// One-off use: `steps` implicit steps of `dt_s` with one diffusivity D (m^2/s) and capacity 1 on every
+/// active tet (bone excluded by label). `values`: #V node values, updated in place. Returns the total
+/// boundary outflow (c u mm^3).
+double diffuse(const TetMesh& mesh, const std::vector<RobinFace>& faces, double diffusivity_m2_per_s, double dt_s,
+               int steps, std::vector<double>& values);
+
 }  // namespace forensim

@@ -208,3 +208,10 @@ TEST(CorotationalSolver, RejectsBadMaterials) {
   m.tet_density_kg_per_m3.pop_back();
   EXPECT_THROW(CorotationalSolver(mesh, m), InputError);
 }
+
+TEST(CorotationalSolver, OneCallFormShrinksFreeBody) {
+  const TetMesh mesh = make_box_tet_mesh(Vec3::Zero(), Vec3(1, 1, 1), 2, 2, 2);
+  const auto x = shrink_quasi_static(mesh, elastic_materials_from_labels(mesh, flesh, bone),
+                                     std::vector<double>(mesh.tet_count(), 0.5));
+  EXPECT_NEAR(volume_of(mesh, x), 0.5, 1e-6);
+}

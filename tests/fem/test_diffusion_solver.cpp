@@ -214,3 +214,14 @@ TEST(DiffusionSolver, RejectsBadInput) {
   EXPECT_THROW(solver.step(u, -1.0), InputError);
   EXPECT_THROW(solver.set_tet_diffusivity({1.0}), InputError);
 }
+
+TEST(DiffusionSolver, OneCallFormBalancesItsOutflow) {
+  const TetMesh mesh = make_box_tet_mesh(Vec3::Zero(), Vec3(2, 2, 2), 3, 3, 3);
+  const auto faces = skin_robin_faces(mesh, {}, 1e-6, 0.0);
+  std::vector<double> u(mesh.vertex_count(), 1.0);
+  const double before = 8.0;  // content of u = 1, c = 1 over 8 mm^3
+  const double outflow = diffuse(mesh, faces, 1e-9, 600.0, 4, u);
+  DiffusionSolver probe(mesh, {}, faces);
+  EXPECT_GT(outflow, 0.0);
+  EXPECT_NEAR(probe.total_content(u), before - outflow, 1e-10 * before);
+}
