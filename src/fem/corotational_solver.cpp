@@ -64,6 +64,7 @@ struct CorotationalSolver::Impl {
   std::vector<Vec3> external;       // internal force units
   std::vector<std::uint8_t> fixed;  // per node
   std::vector<Index> user_fixed;
+  std::vector<Index> loose;  // nodes of no tet
 
   SparsityPattern pattern;
   SparseMatrix system;
@@ -148,6 +149,7 @@ struct CorotationalSolver::Impl {
   void update_fixed() {
     fixed.assign(node_count, 0);
     for (Index n : user_fixed) fixed[static_cast<std::size_t>(n)] = 1;
+    for (Index n : loose) fixed[static_cast<std::size_t>(n)] = 1;
     if (settings.rigid_mode == RigidMode::fixed) {
       for (std::size_t t = 0; t < tets.size(); ++t) {
         if (rigid[t] != 0) {
@@ -245,9 +247,13 @@ CorotationalSolver::CorotationalSolver(const TetMesh& rest_mesh, const ElasticMa
     const double m = materials.tet_density_kg_per_m3[t] * kg_per_mm3_per_kg_per_m3 * s.volumes[t] / 4.0;
     for (Index n : s.tets[t]) s.mass[static_cast<std::size_t>(n)] += m;
   }
-  // Nodes in no tet get a tiny mass so that the dynamic system stays definite; they never move.
-  for (double& m : s.mass) {
-    if (m == 0.0) m = 1e-30;
+  // Nodes in no tet have no mass and no stiffness: they are held in place (and given a unit mass so that
+  // no zero ever reaches a diagonal).
+  for (std::size_t n = 0; n < s.node_count; ++n) {
+    if (s.mass[n] == 0.0) {
+      s.mass[n] = 1.0;
+      s.loose.push_back(static_cast<Index>(n));
+    }
   }
   s.shrinkage.assign(nt, 0.0);
   s.external.assign(s.node_count, Vec3::Zero());

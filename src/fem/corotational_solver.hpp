@@ -117,7 +117,7 @@ class CorotationalSolver {
   std::vector<Vec3> elastic_forces(const std::vector<Vec3>& positions_mm) const;
   /// Elastic energy (N mm) at `positions`: minus the potential of elastic_forces.
   double elastic_energy(const std::vector<Vec3>& positions_mm) const;
-  /// Lumped node masses, kg, #V.
+  /// Lumped node masses, kg, #V (nodes of no tet: 1, and they are held in place).
   std::vector<double> node_masses_kg() const;
   /// True when node n is held in place.
   bool node_fixed(Index n) const;

@@ -200,7 +200,7 @@ DiffusionSolver::DiffusionSolver(const TetMesh& mesh, std::vector<std::uint8_t> 
     s.face_entries.push_back(entries);
   }
   s.solver = make_sparse_solver(settings.solver, settings.cg_tolerance);
-  s.solver->analyse(s.system);
+  if (!s.dof_node.empty()) s.solver->analyse(s.system);
 }
 
 DiffusionSolver::~DiffusionSolver() = default;
@@ -259,6 +259,7 @@ DiffusionStepReport DiffusionSolver::step(std::vector<double>& values, double dt
   require_input(values.size() == s.node_count, source, "values", "wrong size " + std::to_string(values.size()));
   require_input(std::isfinite(dt_s) && dt_s > 0.0, source, "dt", "time step must be > 0");
   DiffusionStepReport report;
+  if (s.dof_node.empty()) return report;  // nothing takes part (all bone)
   if (s.geometry_dirty) {
     s.update_geometry();
     s.coefficients_dirty = true;

@@ -225,3 +225,14 @@ TEST(DiffusionSolver, OneCallFormBalancesItsOutflow) {
   EXPECT_GT(outflow, 0.0);
   EXPECT_NEAR(probe.total_content(u), before - outflow, 1e-10 * before);
 }
+
+TEST(DiffusionSolver, AllBoneIsANoOp) {
+  TetMesh mesh = make_box_tet_mesh(Vec3::Zero(), Vec3::Ones(), 2, 2, 2);
+  mesh.tet_labels.assign(mesh.tet_count(), tissue_bone);
+  const auto active = diffusion_active_tets(mesh);
+  DiffusionSolver solver(mesh, active, skin_robin_faces(mesh, active, 1e-6, 0.0));
+  EXPECT_EQ(solver.active_node_count(), 0u);
+  std::vector<double> u(mesh.vertex_count(), 0.25);
+  EXPECT_EQ(solver.step(u, 100.0).boundary_outflow, 0.0);
+  for (double v : u) EXPECT_EQ(v, 0.25);
+}
