@@ -6,10 +6,12 @@
 #pragma GCC diagnostic ignored "-Wnull-dereference"  // false positives inside CGAL's containers
 #pragma GCC diagnostic ignored "-Wshadow"
 #pragma GCC diagnostic ignored "-Wunused-parameter"
-#include <CGAL/Surface_mesh_parameterization/ARAP_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #pragma GCC diagnostic pop
+
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +19,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "core/error.hpp"
@@ -232,41 +235,215 @@ void orient_counter_clockwise(const Chart& chart, std::vector<Vec2>& uv) {
   }
 }
 
+/// As-rigid-as-possible refinement of a flattening (Liu et al. 2008, local/global iterations with cotangent
+/// weights): each triangle's best rotation of its isometric 2D copy (SVD, reflections excluded), then one
+/// sparse solve for all UVs. The matrix is factored once. Written here rather than with CGAL's
+/// ARAP_parameterizer_3, which re-factors every iteration and whose solve failed on finger-webbed charts.
+void arap_refine(const TriMesh& mesh, const Chart& chart, std::vector<Vec2>& uv, int iterations) {
+  const std::size_t nt = chart.local_triangles.size(), nv = chart.vertices.size();
+  std::vector<std::array<Vec2, 3>> local(nt);
+  std::vector<std::array<double, 3>> cot(nt);  // cot of the angle at each corner
+  for (std::size_t t = 0; t < nt; ++t) {
+    Vec3 q[3];
+    for (std::size_t k = 0; k < 3; ++k) {
+      q[k] = mesh.positions[static_cast<std::size_t>(
+          chart.vertices[static_cast<std::size_t>(chart.local_triangles[t][k])])];
+    }
+    const Vec3 e1 = q[1] - q[0], e2 = q[2] - q[0];
+    const double l1 = e1.norm();
+    const double area2 = e1.cross(e2).norm();
+    local[t] = {Vec2(0, 0), Vec2(l1, 0), Vec2(l1 > 0 ? e2.dot(e1) / l1 : 0.0, l1 > 0 ? area2 / l1 : 0.0)};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 a = q[(k + 1) % 3] - q[k], b = q[(k + 2) % 3] - q[k];
+      // Clamped so the Laplacian stays positive definite on obtuse triangles.
+      cot[t][k] = area2 > 0.0 ? std::clamp(a.dot(b) / area2, 1e-3, 1e3) : 1e-3;
+    }
+  }
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(nt * 12 + 1);
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto i = static_cast<int>(chart.local_triangles[t][(k + 1) % 3]);
+      const auto j = static_cast<int>(chart.local_triangles[t][(k + 2) % 3]);
+      const double w = cot[t][k];
+      entries.emplace_back(i, i, w);
+      entries.emplace_back(j, j, w);
+      entries.emplace_back(i, j, -w);
+      entries.emplace_back(j, i, -w);
+    }
+  }
+  entries.emplace_back(0, 0, 1.0);  // pins the translation softly at vertex 0
+  SparseMatrix laplacian(static_cast<Eigen::Index>(nv), static_cast<Eigen::Index>(nv));
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<SparseMatrix> solver(laplacian);
+  if (solver.info() != Eigen::Success) return;  // keep the input map
+  Eigen::MatrixXd rhs(static_cast<Eigen::Index>(nv), 2);
+  std::vector<Eigen::Matrix2d> rotation(nt);
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t t = 0; t < nt; ++t) {
+      Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+      for (std::size_t k = 0; k < 3; ++k) {
+        const auto i = static_cast<std::size_t>(chart.local_triangles[t][(k + 1) % 3]);
+        const auto j = static_cast<std::size_t>(chart.local_triangles[t][(k + 2) % 3]);
+        cov += cot[t][k] * (uv[i] - uv[j]) * (local[t][(k + 1) % 3] - local[t][(k + 2) % 3]).transpose();
+      }
+      const Eigen::JacobiSVD<Eigen::Matrix2d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Eigen::Matrix2d u = svd.matrixU();
+      if ((u * svd.matrixV().transpose()).determinant() < 0.0) u.col(1) *= -1.0;
+      rotation[t] = u * svd.matrixV().transpose();
+    }
+    rhs.setZero();
+    rhs.row(0) = uv[0].transpose();
+    for (std::size_t t = 0; t < nt; ++t) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        const auto i = static_cast<Eigen::Index>(chart.local_triangles[t][(k + 1) % 3]);
+        const auto j = static_cast<Eigen::Index>(chart.local_triangles[t][(k + 2) % 3]);
+        const Vec2 d = cot[t][k] * rotation[t] * (local[t][(k + 1) % 3] - local[t][(k + 2) % 3]);
+        rhs.row(i) += d.transpose();
+        rhs.row(j) -= d.transpose();
+      }
+    }
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    if (!x.allFinite()) return;
+    for (std::size_t v = 0; v < nv; ++v) uv[v] = x.row(static_cast<Eigen::Index>(v)).transpose();
+  }
+}
+
+/// Unfolds the few triangles a flattening may leave flipped: interior vertices of flipped triangles (and,
+/// as rounds go on, their neighbours) move to the mean of their neighbours (a local Tutte step).
+void untangle(const Chart& chart, const std::vector<bool>& on_border, std::vector<Vec2>& uv) {
+  std::vector<std::vector<Index>> ring(chart.vertices.size());
+  for (const Tri& t : chart.local_triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      ring[static_cast<std::size_t>(t[k])].push_back(t[(k + 1) % 3]);
+      ring[static_cast<std::size_t>(t[k])].push_back(t[(k + 2) % 3]);
+    }
+  }
+  for (int round = 0; round < 200; ++round) {
+    std::vector<Index> active;
+    for (const Tri& t : chart.local_triangles) {
+      const auto a = static_cast<std::size_t>(t[0]), b = static_cast<std::size_t>(t[1]),
+                 c = static_cast<std::size_t>(t[2]);
+      if (cross2(uv[b] - uv[a], uv[c] - uv[a]) <= 0.0) active.insert(active.end(), t.begin(), t.end());
+    }
+    if (active.empty()) return;
+    for (int grow = 0; grow < round / 20; ++grow) {  // widen the region when a small one does not unfold
+      const std::size_t n = active.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& r = ring[static_cast<std::size_t>(active[i])];
+        active.insert(active.end(), r.begin(), r.end());
+      }
+      std::sort(active.begin(), active.end());
+      active.erase(std::unique(active.begin(), active.end()), active.end());
+    }
+    std::sort(active.begin(), active.end());
+    active.erase(std::unique(active.begin(), active.end()), active.end());
+    for (const Index v : active) {
+      if (on_border[static_cast<std::size_t>(v)]) continue;
+      Vec2 sum = Vec2::Zero();
+      for (const Index w : ring[static_cast<std::size_t>(v)]) sum += uv[static_cast<std::size_t>(w)];
+      uv[static_cast<std::size_t>(v)] = sum / static_cast<double>(ring[static_cast<std::size_t>(v)].size());
+    }
+  }
+}
+
+/// Pairs of border edges of a flattened chart that cross (exact orientation tests on the doubles; edges
+/// sharing a vertex are skipped). A chart without flipped triangles overlaps itself exactly when its border
+/// crosses itself.
+std::size_t border_crossings(const std::vector<std::array<Index, 2>>& border, const std::vector<Vec2>& uv) {
+  const auto orient = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const double d = cross2(b - a, c - a);
+    return d > 0.0 ? 1 : (d < 0.0 ? -1 : 0);
+  };
+  std::size_t crossings = 0;
+  for (std::size_t i = 0; i < border.size(); ++i) {
+    const Vec2& a = uv[static_cast<std::size_t>(border[i][0])];
+    const Vec2& b = uv[static_cast<std::size_t>(border[i][1])];
+    const Vec2 lo_i = a.cwiseMin(b), hi_i = a.cwiseMax(b);
+    for (std::size_t j = i + 1; j < border.size(); ++j) {
+      if (border[j][0] == border[i][0] || border[j][0] == border[i][1] || border[j][1] == border[i][0] ||
+          border[j][1] == border[i][1]) {
+        continue;
+      }
+      const Vec2& c = uv[static_cast<std::size_t>(border[j][0])];
+      const Vec2& d = uv[static_cast<std::size_t>(border[j][1])];
+      if ((c.cwiseMax(d).array() < lo_i.array()).any() || (c.cwiseMin(d).array() > hi_i.array()).any()) continue;
+      if (orient(a, b, c) * orient(a, b, d) <= 0 && orient(c, d, a) * orient(c, d, b) <= 0) ++crossings;
+    }
+  }
+  return crossings;
+}
+
+/// Vertices around which the flattened triangles wind more than once (UV angle sum above 2 pi on the
+/// border, different from 2 pi inside): folds that leave every triangle positively oriented.
+std::size_t winding_vertices(const Chart& chart, const std::vector<bool>& on_border, const std::vector<Vec2>& uv) {
+  std::vector<double> angle(uv.size(), 0.0);
+  for (const Tri& t : chart.local_triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec2& p = uv[static_cast<std::size_t>(t[k])];
+      const Vec2 a = uv[static_cast<std::size_t>(t[(k + 1) % 3])] - p,
+                 b = uv[static_cast<std::size_t>(t[(k + 2) % 3])] - p;
+      angle[static_cast<std::size_t>(t[k])] += std::abs(std::atan2(cross2(a, b), a.dot(b)));
+    }
+  }
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < angle.size(); ++v) {
+    const double full = 2.0 * std::numbers::pi;
+    if (on_border[v] ? angle[v] > full + 1e-6 : std::abs(angle[v] - full) > 1e-6) ++count;
+  }
+  return count;
+}
+
 void flatten_chart(const TriMesh& mesh, Chart& chart, const UvAtlasOptions& options) {
   SurfaceMesh sm = chart_surface_mesh(mesh, chart);
+  std::vector<bool> on_border(chart.vertices.size(), false);
+  std::vector<std::array<Index, 2>> border;
+  for (const auto h : sm.halfedges()) {
+    if (!sm.is_border(h)) continue;
+    on_border[sm.target(h).idx()] = true;
+    border.push_back({static_cast<Index>(sm.source(h).idx()), static_cast<Index>(sm.target(h).idx())});
+  }
   std::vector<std::array<Vec3, 3>> surface;
   std::vector<std::array<Vec2, 3>> corners;
   struct Candidate {
     std::string name;
     std::vector<Vec2> uv;
     StretchSums stretch;
+    std::size_t crossings = 0;
   };
   std::vector<Candidate> candidates;
   const auto evaluate = [&](const std::string& name, std::vector<Vec2> uv) {
     orient_counter_clockwise(chart, uv);
     chart_corners(mesh, chart, uv, surface, corners);
-    candidates.push_back({name, std::move(uv), measure_stretch(surface, corners)});
+    const std::size_t crossings = border_crossings(border, uv) + winding_vertices(chart, on_border, uv);
+    candidates.push_back({name, std::move(uv), measure_stretch(surface, corners), crossings});
   };
-  const bool try_lscm = options.flattening != UvFlattening::arap;
+  std::vector<Vec2> lscm;
+  if (!flatten_with(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), lscm)) {
+    throw NumericError("UV atlas: CGAL's LSCM could not flatten " + chart_name(chart.id) + " (" +
+                       std::to_string(chart.triangles.size()) + " triangles)");
+  }
+  orient_counter_clockwise(chart, lscm);
   const bool try_arap =
       options.flattening == UvFlattening::arap ||
       (options.flattening == UvFlattening::automatic && chart.triangles.size() <= options.arap_max_triangles);
-  if (try_lscm) {
-    std::vector<Vec2> uv;
-    if (flatten_with(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), uv)) evaluate("lscm", std::move(uv));
-  }
   if (try_arap) {
-    std::vector<Vec2> uv;
-    using Arap = SMP::ARAP_parameterizer_3<SurfaceMesh>;
-    Arap arap(Arap::Border_parameterizer(), Arap::Solver_traits(), 1000.0,
-              static_cast<unsigned>(std::max(1, options.arap_iterations)), 1e-6);
-    if (flatten_with(sm, arap, uv)) evaluate("arap", std::move(uv));
+    std::vector<Vec2> uv = lscm;
+    arap_refine(mesh, chart, uv, std::max(1, options.arap_iterations));
+    untangle(chart, on_border, uv);
+    evaluate("arap", std::move(uv));
   }
-  // Prefer valid maps (no flipped triangles), then the lower L2 stretch.
+  if (options.flattening != UvFlattening::arap || candidates.back().crossings > 0 ||
+      candidates.back().stretch.flipped > 0) {
+    untangle(chart, on_border, lscm);
+    evaluate("lscm", std::move(lscm));
+  }
+  // Prefer valid maps (no flipped triangles, no border crossing itself), then the lower L2 stretch.
   const Candidate* best = nullptr;
   for (const Candidate& c : candidates) {
-    if (best == nullptr ||
-        std::make_pair(c.stretch.flipped, c.stretch.l2) < std::make_pair(best->stretch.flipped, best->stretch.l2)) {
+    if (best == nullptr || std::make_tuple(c.stretch.flipped, c.crossings, c.stretch.l2) <
+                               std::make_tuple(best->stretch.flipped, best->crossings, best->stretch.l2)) {
       best = &c;
     }
   }
@@ -286,6 +463,7 @@ void flatten_chart(const TriMesh& mesh, Chart& chart, const UvAtlasOptions& opti
   chart.stats.max_stretch = best->stretch.max_stretch;
   chart.stats.area_distortion = best->stretch.area_distortion;
   chart.stats.flipped_triangles = best->stretch.flipped;
+  chart.stats.self_overlaps = best->crossings;
   // Common density: scale so the chart's UV area equals its surface area (1 UV unit = 1 mm for now).
   chart_corners(mesh, chart, chart.uv, surface, corners);
   double area3 = 0.0, area_uv = 0.0;

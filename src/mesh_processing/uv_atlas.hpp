@@ -11,18 +11,20 @@
 
 namespace forensim {
 
-/// How each chart is flattened (CGAL Surface_mesh_parameterization, both with a free border).
+/// How each chart is flattened, both with a free border.
 enum class UvFlattening {
-  lscm,       ///< least squares conformal maps (Levy et al. 2002): angle-preserving, fast, may vary in scale
-  arap,       ///< as-rigid-as-possible (Liu et al. 2008), started from LSCM: balances angles and areas
-  automatic,  ///< both, keeping the one with the lower L2 stretch (ARAP only up to arap_max_triangles)
+  lscm,       ///< least squares conformal maps (Levy et al. 2002, CGAL Surface_mesh_parameterization):
+              ///< angle-preserving, fast, but shrinks narrow protrusions such as fingers
+  arap,       ///< as-rigid-as-possible (Liu et al. 2008, local/global), started from LSCM: near-isometric
+  automatic,  ///< ARAP, or LSCM where that folds or overlaps itself less or stretches less (ARAP only up to
+              ///< arap_max_triangles); a chart is valid with no flipped triangle and no border crossing
 };
 
 struct UvAtlasOptions {
   UvFlattening flattening = UvFlattening::automatic;
   int resolution = 2048;                    ///< texels per side of the square texture the gutter is measured in
   int gutter_texels = 4;                    ///< empty texels between charts and from the atlas border
-  int arap_iterations = 30;                 ///< ARAP local/global iterations
+  int arap_iterations = 40;                 ///< ARAP local/global iterations
   std::size_t arap_max_triangles = 200000;  ///< automatic: larger charts use LSCM only
 };
 
@@ -37,6 +39,9 @@ struct UvChartStats {
   double area_distortion = 1.0;       ///< area-weighted mean of max(r, 1/r), r = normalised UV/surface area ratio
   std::string flattening;             ///< "lscm" or "arap"
   std::size_t flipped_triangles = 0;  ///< triangles with non-positive UV area (0 for a valid chart)
+  /// Pairs of border edges that cross plus vertices the triangles wind around more than once: where the chart
+  /// overlaps itself (0 when valid).
+  std::size_t self_overlaps = 0;
 };
 
 /// The whole atlas.

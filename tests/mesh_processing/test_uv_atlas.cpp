@@ -63,6 +63,7 @@ TEST(UvAtlas, BoxFacesAreIsometricPackedAndDisjoint) {
     EXPECT_NEAR(c.l2_stretch, 1.0, 1e-6);
     EXPECT_NEAR(c.area_distortion, 1.0, 1e-6);
     EXPECT_EQ(c.flipped_triangles, 0u);
+    EXPECT_EQ(c.self_overlaps, 0u);
   }
   EXPECT_TRUE(atlas.stats.overlap_free);
   EXPECT_FALSE(uv_triangles_overlap(atlas.mesh, 2048));
