@@ -1,0 +1,238 @@
+#include "wound/abrasion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "core/random.hpp"
+#include "texture/image_ops.hpp"
+#include "texture/shape_erosion.hpp"
+#include "texture/value_noise.hpp"
+
+namespace forensim {
+
+namespace {
+
+using namespace abrasion_colors;
+
+// One noise layer with the thesis's octaves, persistence, bias and gain, its periods raised to keep the
+// look in mm at the canvas's density; `salt` makes the layers independent.
+Image thesis_noise(const WoundCanvas& c, const AbrasionParams& p, int octaves, double persistence, double bias,
+                   double gain, std::uint64_t salt) {
+  ValueNoiseParams n;
+  n.octaves = octaves;
+  n.persistence = persistence;
+  n.bias = bias;
+  n.gain = gain;
+  n.first_octave = std::max(0, static_cast<int>(std::lround(std::log2(c.texels_per_mm / p.thesis_texels_per_mm))));
+  n.seed = mix64(c.seed ^ mix64(salt));
+  return value_noise(c.width(), c.height(), n);
+}
+
+Vec4f lerp4(const Vec4f& a, const Vec4f& b, float t) {
+  return a + (b - a) * t;
+}
+
+Vec4f mul4(const Vec4f& a, const Vec4f& b) {
+  return Vec4f(a.x() * b.x(), a.y() * b.y(), a.z() * b.z(), a.w() * b.w());
+}
+
+// The red glow outside the wound (chapter 4.3.2): Lerp(WOUND_RED, upper skin, d / thickness).
+Vec4f glow(const WoundCanvas& c, int x, int y, double thickness_mm) {
+  const Vec4f upper = c.upper_skin.rgba(x, y);
+  const float d = c.outside_mm.at(x, y);
+  if (!(d <= thickness_mm)) return upper;
+  return lerp4(wound_red, upper, static_cast<float>(d / thickness_mm));
+}
+
+bool inside(const WoundCanvas& c, int x, int y) {
+  return c.shape.at(x, y) >= 0.5f;
+}
+
+template <typename F>
+void for_rows(int height, F&& f) {
+  parallel_for(
+      0, static_cast<std::size_t>(height), [&](std::size_t row) { f(static_cast<int>(row)); }, 8);
+}
+
+// Erosion range of m in thesis texels, at the canvas's density.
+std::pair<int, int> erosion_range(const WoundCanvas& c, const AbrasionParams& p, int m_min, int m_max) {
+  const double k = c.texels_per_mm / p.thesis_texels_per_mm;
+  const int lo = std::clamp(static_cast<int>(std::lround(m_min * k)), 1, 4096);
+  const int hi = std::clamp(static_cast<int>(std::lround(m_max * k)), lo, 4096);
+  return {lo, hi};
+}
+
+}  // namespace
+
+double AbrasionParams::reach_mm() const {
+  return px_to_mm(std::max(glow_thickness_px, scab_gradient_px)) + 0.5;
+}
+
+MapSet VasoconstrictionKey::render(const WoundCanvas& c, double) const {
+  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), m_params.skin_reflection);
+  for_rows(c.height(), [&](int y) {
+    for (int x = 0; x < c.width(); ++x)
+      m.color.set_rgba(x, y, inside(c, x, y) ? c.lower_skin.rgba(x, y) : c.upper_skin.rgba(x, y));
+  });
+  return m;
+}
+
+MapSet VasodilationKey::render(const WoundCanvas& c, double) const {
+  const AbrasionParams& p = m_params;
+  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  const auto [a0, a1] = erosion_range(c, p, 3, 5);
+  const auto [b0, b1] = erosion_range(c, p, 3, 10);
+  const Image eroded = erode_shape(erode_shape(c.shape, a0, a1, mix64(c.seed ^ 0xE1)), b0, b1, mix64(c.seed ^ 0xE2));
+  const Image scrape = thesis_noise(c, p, 5, 0.09, 0.5, 0.43, 0x5C);
+  const double glow_mm = p.px_to_mm(p.glow_thickness_px);
+  for_rows(c.height(), [&](int y) {
+    for (int x = 0; x < c.width(); ++x) {
+      if (!inside(c, x, y)) {
+        m.color.set_rgba(x, y, glow(c, x, y, glow_mm));
+      } else if (eroded.at(x, y) >= 0.5f) {
+        m.color.set_rgba(x, y, mul4(c.lower_skin.rgba(x, y), wound_red));
+        // Scrape marks: the noise stretched 6400% along y (chapter 4.3.2, Figure 4.6).
+        m.reflection.at(x, y) = sample_bilinear(scrape, x + 0.5, (y + 0.5) / 64.0, 0, WrapMode::wrap);
+      } else {
+        m.color.set_rgba(x, y, mul4(c.upper_skin.rgba(x, y), edge_grey));
+      }
+    }
+  });
+  return m;
+}
+
+MapSet ScabFormingKey::render(const WoundCanvas& c, double) const {
+  const AbrasionParams& p = m_params;
+  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  const Image bottom = thesis_noise(c, p, 5, 0.85, 0.54, 0.21, 0xB0);
+  const Image speckle = thesis_noise(c, p, 5, 0.48, 0.16, 0.15, 0x5E);
+  const double glow_mm = p.px_to_mm(p.glow_thickness_px);
+  for_rows(c.height(), [&](int y) {
+    for (int x = 0; x < c.width(); ++x) {
+      if (!inside(c, x, y)) {
+        m.color.set_rgba(x, y, glow(c, x, y, glow_mm));
+        continue;
+      }
+      const float nb = bottom.at(x, y);
+      // Eq. 4.5: lowerWoundColor = lowerSkin * noise.r + upperSkin * (1 - noise.r).
+      const Vec4f lower_wound = c.lower_skin.rgba(x, y) * nb + c.upper_skin.rgba(x, y) * (1.0f - nb);
+      // Eq. 4.6 with speckleWoundColor = speckle noise x (0.88, 0.20, 0.22).
+      const Vec4f sp = speckle_red * speckle.at(x, y);
+      Vec4f out = sp * sp.x() + lower_wound * (1.0f - sp.x());
+      out.w() = 1.0f;
+      m.color.set_rgba(x, y, out);
+    }
+  });
+  return m;
+}
+
+MapSet ScabKey::render(const WoundCanvas& c, double) const {
+  const AbrasionParams& p = m_params;
+  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  const Image mask = thesis_noise(c, p, 7, 1.0, 0.44, 0.02, 0x4A);
+  const Image body = thesis_noise(c, p, 5, 0.54, 0.3, 0.69, 0x4B);
+  const Image rim_noise = thesis_noise(c, p, 5, 0.33, 0.60, 0.59, 0x4C);
+  const Image shine = thesis_noise(c, p, 10, 1.0, 0.25, 0.95, 0x4D);
+  const double glow_mm = p.px_to_mm(p.glow_thickness_px);
+  const double rim_mm = p.px_to_mm(p.scab_gradient_px);
+  for_rows(c.height(), [&](int y) {
+    for (int x = 0; x < c.width(); ++x) {
+      if (!inside(c, x, y)) {
+        m.color.set_rgba(x, y, glow(c, x, y, glow_mm));
+        continue;
+      }
+      const float h = mask.at(x, y) * body.at(x, y);  // Figure 4.10: masked noise
+      m.height_mm.at(x, y) = static_cast<float>(h * p.scab_height_mm);
+      const double d = c.inside_mm.at(x, y);
+      Vec4f rim(0, 0, 0, 1);
+      if (d <= rim_mm) rim = lerp4(scab_rim_red, Vec4f(0, 0, 0, 1), static_cast<float>(d / rim_mm));
+      rim *= rim_noise.at(x, y);
+      const Vec4f inner = lerp4(scab_light, scab_dark, h);
+      // Eq. 4.7: finalColor = innerColor + gradientColor * (white - innerColor).
+      Vec4f out = inner + mul4(rim, Vec4f(1, 1, 1, 1) - inner);
+      out.w() = 1.0f;
+      m.color.set_rgba(x, y, out);
+      m.reflection.at(x, y) = shine.at(x, y);
+    }
+  });
+  return m;
+}
+
+std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double position) const {
+  // Eq. 4.8. maxOuterGradBorder is half the closing distance; it is raised to the deepest inside distance
+  // when the discrete border makes that larger, so the wound always closes at position 1.
+  double deepest = 0.0;
+  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
+  const double max_outer = std::max(c.closing_distance_mm * 0.5, deepest);
+  const double shrink =
+      m_params.shrink_min + (m_params.shrink_max - m_params.shrink_min) * hash_uniform(c.seed, 0x4D41);
+  const double outer = max_outer * std::clamp(position, 0.0, 1.0);
+  return {outer, outer + max_outer * shrink};
+}
+
+MapSet MaturationKey::render(const WoundCanvas& c, double position) const {
+  const AbrasionParams& p = m_params;
+  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  const auto [outer, inner] = borders_mm(c, position);
+  double deepest = 0.0;
+  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
+  const double half = std::max(c.closing_distance_mm * 0.5, deepest);
+  for_rows(c.height(), [&](int y) {
+    for (int x = 0; x < c.width(); ++x) {
+      const Vec4f skin = c.upper_skin.rgba(x, y);
+      const double d = c.inside_mm.at(x, y);
+      if (!inside(c, x, y) || d <= outer) {  // Algorithm 4.4, lines 3 to 5
+        m.color.set_rgba(x, y, skin);
+      } else if (d <= inner) {  // lines 6 to 10
+        const double t = inner > outer ? (d - outer) / (inner - outer) : 1.0;
+        m.color.set_rgba(x, y, lerp4(skin, wound_red, static_cast<float>(t)));
+      } else {  // lines 11 to 15
+        const double t = half > inner ? std::clamp((d - inner) / (half - inner), 0.0, 1.0) : 1.0;
+        m.color.set_rgba(x, y, lerp4(wound_red, wound_white, static_cast<float>(t)));
+      }
+    }
+  });
+  return m;
+}
+
+std::shared_ptr<const KeyPosition> make_abrasion_key(const std::string& phase, const AbrasionParams& params) {
+  if (phase == "vasoconstriction") return std::make_shared<VasoconstrictionKey>(params);
+  if (phase == "vasodilation") return std::make_shared<VasodilationKey>(params);
+  if (phase == "scab_forming") return std::make_shared<ScabFormingKey>(params);
+  if (phase == "scab") return std::make_shared<ScabKey>(params);
+  if (phase == "maturation") return std::make_shared<MaturationKey>(params);
+  throw InputError("abrasion", "phase '" + phase + "'",
+                   "unknown phase (vasoconstriction, vasodilation, scab_forming, scab, maturation)");
+}
+
+std::vector<TimelineEntry> default_abrasion_timeline(const AbrasionParams& params) {
+  const double minute = 60.0, hour = 3600.0, day = 86400.0;
+  const auto vc = make_abrasion_key("vasoconstriction", params);
+  const auto vd = make_abrasion_key("vasodilation", params);
+  const auto sf = make_abrasion_key("scab_forming", params);
+  const auto sc = make_abrasion_key("scab", params);
+  const auto mt = make_abrasion_key("maturation", params);
+  return {
+      {0.0, vc, 0.0, "vasoconstriction"},        {5 * minute, vc, 0.0, "vasoconstriction (held)"},
+      {15 * minute, vd, 0.0, "vasodilation"},    {2 * hour, sf, 0.0, "scab-forming"},
+      {2 * day, sf, 0.0, "scab-forming (held)"}, {5 * day, sc, 0.0, "scab"},
+      {10 * day, sc, 0.0, "scab (held)"},        {10 * day, mt, 0.0, "maturation start"},
+      {28 * day, mt, 1.0, "maturation end"},
+  };
+}
+
+std::size_t visible_wound_texels(const WoundCanvas& c, const MapSet& maps, float tolerance) {
+  std::size_t n = 0;
+  for (int y = 0; y < c.height(); ++y) {
+    for (int x = 0; x < c.width(); ++x) {
+      if (!inside(c, x, y)) continue;
+      const Vec4f d = maps.color.rgba(x, y) - c.upper_skin.rgba(x, y);
+      if (d.head<3>().cwiseAbs().maxCoeff() > tolerance) ++n;
+    }
+  }
+  return n;
+}
+
+}  // namespace forensim
