@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -41,7 +42,7 @@ void triangle_tangents(const TriMesh& mesh, Index triangle, Vec3& dp_du, Vec3& d
   dp_dv = (e2 * d1.x() - e1 * d2.x()) / det;
 }
 
-UvRaster rasterize_uv(const TriMesh& mesh, int width, int height) {
+UvRaster rasterize_uv(const TriMesh& mesh, int width, int height, int padding_texels) {
   mesh.validate("mesh to bake");
   require_input(mesh.has_uvs(), "mesh to bake", "", "has no UVs");
   require_input(width >= 1 && width <= 16384 && height >= 1 && height <= 16384, "UV raster", "size",
@@ -84,6 +85,55 @@ UvRaster rasterize_uv(const TriMesh& mesh, int width, int height) {
       }
     }
   }
+  require_input(padding_texels >= 0 && padding_texels <= 64, "UV raster", "padding_texels",
+                "must be in [0, 64], got " + std::to_string(padding_texels));
+  // Padding: rings of texels just outside the triangles take the best-fitting neighbouring texel's triangle,
+  // with barycentrics extrapolated, so bilinear lookups at chart borders read true values, not blends.
+  std::vector<std::uint8_t> inside(count, 0);
+  for (std::size_t i = 0; i < count; ++i) inside[i] = texel_triangle[i] >= 0 ? 1 : 0;
+  const auto weights_at = [&](Index t, int ix, int iy) {
+    Vec2 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& uv = corner_uv(mesh, t, k);
+      p[k] = Vec2(uv.x() * width, (1.0 - uv.y()) * height);
+    }
+    const Vec2 c(ix + 0.5, iy + 0.5);
+    const double area2 = cross2(p[1] - p[0], p[2] - p[0]);
+    const double w0 = cross2(p[1] - c, p[2] - c) / area2, w1 = cross2(p[2] - c, p[0] - c) / area2;
+    return Vec3(w0, w1, 1.0 - w0 - w1);
+  };
+  for (int ring = 0; ring < padding_texels; ++ring) {
+    std::vector<std::pair<std::size_t, Index>> found;
+    for (int iy = 0; iy < height; ++iy) {
+      for (int ix = 0; ix < width; ++ix) {
+        const std::size_t i =
+            static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) + static_cast<std::size_t>(ix);
+        if (texel_triangle[i] >= 0) continue;
+        Index best = -1;
+        double best_outside = std::numeric_limits<double>::infinity();
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = ix + dx, y = iy + dy;
+            if (x < 0 || y < 0 || x >= width || y >= height) continue;
+            const Index t = texel_triangle[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                           static_cast<std::size_t>(x)];
+            if (t < 0 || t == best) continue;
+            const double outside = -weights_at(t, ix, iy).minCoeff();
+            if (outside < best_outside || (outside == best_outside && t < best)) {
+              best_outside = outside;
+              best = t;
+            }
+          }
+        }
+        if (best >= 0) found.emplace_back(i, best);
+      }
+    }
+    for (const auto& [i, t] : found) {
+      texel_triangle[i] = t;
+      texel_weights[i] = weights_at(t, static_cast<int>(i % static_cast<std::size_t>(width)),
+                                    static_cast<int>(i / static_cast<std::size_t>(width)));
+    }
+  }
   raster.map.assign(count, -1);
   std::size_t covered = 0;
   for (std::size_t i = 0; i < count; ++i) {
@@ -107,6 +157,7 @@ UvRaster rasterize_uv(const TriMesh& mesh, int width, int height) {
     texel.y = static_cast<int>(i / static_cast<std::size_t>(width));
     texel.triangle = texel_triangle[i];
     texel.barycentric = texel_weights[i];
+    texel.inside = inside[i] != 0;
     const auto t = static_cast<std::size_t>(texel.triangle);
     const Tri& f = mesh.triangles[t];
     texel.position = Vec3::Zero();
@@ -114,9 +165,8 @@ UvRaster rasterize_uv(const TriMesh& mesh, int width, int height) {
     for (std::size_t c = 0; c < 3; ++c) {
       texel.position +=
           texel.barycentric[static_cast<Eigen::Index>(c)] * mesh.positions[static_cast<std::size_t>(f[c])];
-      if (mesh.has_normals()) {
+      if (mesh.has_normals())
         normal += texel.barycentric[static_cast<Eigen::Index>(c)] * mesh.normals[static_cast<std::size_t>(f[c])];
-      }
     }
     texel.normal = normal.norm() > 1e-12 ? Vec3(normal.normalized()) : face_normal[t];
     // Tangent: dP/du without its normal component; falls back to any unit vector orthogonal to the normal.

@@ -25,6 +25,7 @@ struct UvTexel {
   Vec3 normal;         ///< unit interpolated vertex normal (face normal when the mesh has none)
   Vec3 tangent;        ///< unit, along increasing u, orthogonal to `normal`
   Vec3 bitangent;      ///< unit, along increasing v: normal x tangent, or its negative where the UVs are mirrored
+  bool inside = true;  ///< false for a padding texel: outside every triangle, barycentrics extrapolated
 };
 
 /// The texels of a width x height map that UV triangles cover.
@@ -45,15 +46,19 @@ void triangle_tangents(const TriMesh& mesh_with_uvs, Index triangle, Vec3& dp_du
 /// Rasterises the UV triangles of `mesh_with_uvs` at their texel centres (a centre on a shared edge goes to the
 /// lower triangle index; overlapping triangles likewise) and interpolates positions and normals there.
 /// The tangent frame is per triangle, Gram-Schmidt orthogonalised against the interpolated normal (as
-/// MikkTSpace does per vertex). Deterministic; parallel over texels. Throws InputError when the mesh has no
-/// UVs, or for sizes outside [1, 16384].
-UvRaster rasterize_uv(const TriMesh& mesh_with_uvs, int width, int height);
+/// MikkTSpace does per vertex). `padding_texels` rings of texels around the covered ones are added with
+/// inside = false: each takes the neighbouring texel's triangle that it lies least outside of, with the
+/// position extrapolated on that triangle's plane, so that a procedural (solid) bake is exact up to the
+/// chart borders and bilinear lookups there read no blend (keep it below half the atlas gutter).
+/// Deterministic; parallel over texels. Throws InputError when the mesh has no UVs, for sizes outside
+/// [1, 16384] or padding outside [0, 64].
+UvRaster rasterize_uv(const TriMesh& mesh_with_uvs, int width, int height, int padding_texels = 0);
 
 /// Fills up to `texels` rings of uncovered texels around the covered ones with the mean of their already
 /// filled 8-neighbours, ring by ring (deterministic). `covered` is width * height flags (non-zero = baked).
 void dilate_gutter(Image& image, const std::vector<std::uint8_t>& covered, int texels);
 
-/// Coverage flags of a raster (1 where a texel is covered), for dilate_gutter().
+/// Flags of the raster's texels (1 for covered and padding texels), for dilate_gutter().
 std::vector<std::uint8_t> coverage(const UvRaster& raster);
 
 /// Evaluates `shader` at every covered texel in parallel into an image of `channels` (1..4; an RGBA value is

@@ -161,6 +161,24 @@ TEST(UvBake, BakeIsDeterministicAndDilatesIntoTheGutter) {
   }
 }
 
+TEST(UvBake, PaddingTexelsExtrapolateOnTheTrianglePlane) {
+  TriMesh square = make_square(10.0);
+  square.uvs = {Vec2(0.25, 0.25), Vec2(0.75, 0.25), Vec2(0.75, 0.75), Vec2(0.25, 0.75)};  // 20 mm per UV unit
+  const int n = 32;
+  const UvRaster plain = rasterize_uv(square, n, n);
+  const UvRaster padded = rasterize_uv(square, n, n, 2);
+  EXPECT_EQ(plain.texels.size(), 16u * 16u);
+  EXPECT_EQ(padded.texels.size(), 20u * 20u);  // two rings on each side (corners through diagonal neighbours)
+  for (const UvTexel& t : padded.texels) {
+    const double u = (t.x + 0.5) / n, v = 1.0 - (t.y + 0.5) / n;
+    const Vec3 expected((u - 0.25) * 20.0, (v - 0.25) * 20.0, 0.0);
+    EXPECT_NEAR((t.position - expected).norm(), 0.0, 1e-9);
+    EXPECT_EQ(t.inside, plain.at(t.x, t.y) >= 0);
+    EXPECT_NEAR((t.normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  }
+  EXPECT_THROW(rasterize_uv(square, n, n, -1), InputError);
+}
+
 TEST(UvBake, RejectsMeshesWithoutUvsAndBadSizes) {
   TriMesh mesh = make_square(1.0);
   EXPECT_THROW(rasterize_uv(mesh, 0, 8), InputError);
