@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/primitives.hpp"
 #include "mesh_processing/uv_atlas.hpp"
@@ -177,4 +178,44 @@ TEST(UvAtlas, OverlapTestFindsOverlappingAndSparesAdjacentTriangles) {
   EXPECT_EQ(uv_outside_unit_square(mesh), 0u);
   mesh.uvs[0] = Vec2(-0.1, 0.2);
   EXPECT_EQ(uv_outside_unit_square(mesh), 1u);
+}
+
+TEST(UvAtlas, ChartsAreTurnedToTheirMinimumAreaRectangle) {
+  // A flat 100 x 10 mm strip turned by 30 degrees: the packed chart's UV bounding box is the strip itself.
+  TriMesh strip;
+  const int n = 20;
+  const double c = std::cos(0.5236), s = std::sin(0.5236);
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double x = 100.0 * i / n, y = 5.0 * j;
+      strip.positions.emplace_back(c * x - s * y, s * x + c * y, 0.0);
+    }
+  }
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Index a = j * (n + 1) + i, b = a + 1, d = a + n + 1, e = d + 1;
+      strip.triangles.push_back({a, b, e});
+      strip.triangles.push_back({a, e, d});
+    }
+  }
+  const UvAtlas atlas = make_uv_atlas(strip, std::vector<int>(strip.triangles.size(), 0));
+  Vec2 lo = Vec2::Constant(1e9), hi = Vec2::Constant(-1e9);
+  for (const Vec2& uv : atlas.mesh.uvs) {
+    lo = lo.cwiseMin(uv);
+    hi = hi.cwiseMax(uv);
+  }
+  const Vec2 size_mm = (hi - lo) * atlas.stats.mm_per_uv_unit;
+  EXPECT_NEAR(size_mm.x(), 100.0, 0.01);  // landscape
+  EXPECT_NEAR(size_mm.y(), 10.0, 0.01);
+}
+
+TEST(UvAtlas, IsIndependentOfTheThreadCount) {
+  const TriMesh sphere = make_icosphere(Vec3(0, 0, 0), 30.0, 2);
+  set_thread_count(1);
+  const UvAtlas one = make_uv_atlas(sphere, dominant_axis_charts(sphere));
+  set_thread_count(0);
+  const UvAtlas all = make_uv_atlas(sphere, dominant_axis_charts(sphere));
+  ASSERT_EQ(one.mesh.uvs.size(), all.mesh.uvs.size());
+  for (std::size_t i = 0; i < one.mesh.uvs.size(); ++i) EXPECT_EQ(one.mesh.uvs[i], all.mesh.uvs[i]);
+  EXPECT_EQ(one.mesh.triangle_uvs, all.mesh.triangle_uvs);
 }
