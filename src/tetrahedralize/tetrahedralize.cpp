@@ -113,7 +113,7 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   }
   Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
   // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
-  const double cell_size = 0.612 * edge;
+  const double cell_size = 0.612 * edge * o.interior_size_factor;
   Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
                     p::facet_distance = o.surface_distance_fraction * edge,
                     p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
@@ -215,12 +215,6 @@ std::string TetrahedralizeReport::summary() const {
   return out;
 }
 
-std::size_t paper_target_nodes(const std::string& phantom_name) {
-  if (phantom_name == "arm") return 29000;
-  if (phantom_name == "head") return 35000;
-  throw InputError("paper preset", "", "no Table 1 size for '" + phantom_name + "' (known: arm, head)");
-}
-
 TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bone_inputs,
                        const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
   Stopwatch watch;
@@ -231,6 +225,10 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
                 "edge_length_mm", "must be a finite length >= 0");
   require_input(options.edge_length_mm > 0.0 || options.target_nodes > 0 || options.target_tets > 0,
                 "tetrahedralize options", "", "give an edge length, a node count or a tet count");
+  require_input(options.initial_edge_mm >= 0.0 && std::isfinite(options.initial_edge_mm), "tetrahedralize options",
+                "initial_edge_mm", "must be a finite length >= 0");
+  require_input(options.interior_size_factor >= 0.25 && options.interior_size_factor <= 16.0,
+                "tetrahedralize options", "interior_size_factor", "must be in [0.25, 16]");
   require_input(options.radius_edge_bound >= 1.0, "tetrahedralize options", "radius_edge_bound", "must be >= 1");
   require_input(options.surface_distance_fraction > 0.0 && options.surface_distance_fraction <= 1.0,
                 "tetrahedralize options", "surface_distance_fraction", "must be in (0, 1]");
@@ -277,7 +275,10 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   const double target =
       options.target_nodes > 0 ? static_cast<double>(options.target_nodes) : static_cast<double>(options.target_tets);
   const double per_tet = options.target_nodes > 0 ? 1.0 / 5.0 : 1.0;
-  if (by_count) edge = std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
+  if (by_count) {
+    edge = options.initial_edge_mm > 0.0 ? options.initial_edge_mm
+                                         : std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
+  }
   MeshPass pass = mesh_once(skin, bones, edge, options);
   r.passes = 1;
   if (by_count) {
