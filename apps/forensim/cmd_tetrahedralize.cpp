@@ -41,6 +41,7 @@ struct TetArgs {
   double phantom_voxel_mm = 2.0;
   unsigned seed = 0;
   int picture_size = 640;
+  bool close_openings = false;
 };
 
 /// The skin of a model from real input: as given, or remeshed isotropically to about `triangles`.
@@ -61,6 +62,7 @@ int run_tetrahedralize(const TetArgs& a) {
   options.radius_edge_bound = a.radius_edge;
   options.min_dihedral_deg = a.min_dihedral;
   options.seed = a.seed;
+  options.close_openings = a.close_openings;
   const bool phantom_input = a.skin.empty() && a.ct.empty();
   if (!a.size.empty() && !phantom_input) throw Error("--size applies to the built-in phantoms only", ErrorKind::usage);
   if (!a.size.empty() && (a.edge > 0 || a.nodes > 0 || a.tets > 0))
@@ -199,6 +201,8 @@ const RegisterCommand tetrahedralize_command{
           ->check(CLI::Range(1.0, 10.0));
       sub->add_option("--min-dihedral", a->min_dihedral, "Sliver exudation target angle (degrees)")
           ->check(CLI::Range(0.0, 30.0));
+      sub->add_flag("--close-openings", a->close_openings,
+                    "Cap large openings of the surfaces too (a bust's base, a cut limb), not only scan holes");
       sub->add_option("--seed", a->seed, "Seed of the mesher's random choices");
       sub->add_option("--skin-triangles", a->skin_triangles,
                       "Remesh the model's skin to about this many triangles (default: the input skin as is)");

@@ -42,6 +42,10 @@ struct TetrahedralizeOptions {
   double facet_angle_deg = 25.0;
   /// Mesh_3's sliver perturbation (slower, raises the smallest dihedral angles); exudation always runs.
   bool perturb = true;
+  /// Also close openings larger than a quarter of a surface's size (a bust's base, a limb cut off at the
+  /// wrist) with a refined, faired cap; by default only scan-sized holes are filled and a surface with a large
+  /// opening is rejected.
+  bool close_openings = false;
   /// Seed of Mesh_3's random choices (results are deterministic for a given seed and thread count).
   unsigned seed = 0;
 };
