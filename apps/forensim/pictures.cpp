@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "geometry/bounding_box.hpp"
+#include "geometry/tet_boundary.hpp"
 #include "image/png_io.hpp"
 #include "render/renderer.hpp"
 
@@ -106,6 +107,64 @@ std::vector<SheetCell> phantom_view_cells(const std::string& phantom_name, std::
   const Vec3 cut_normal = arm ? Vec3(Vec3::UnitZ()) : axes.left();
   cells.push_back({render_view(cutaway_scene(skin, bone, cut_normal, axes), settings, arm ? "top" : "left", axes),
                    "cut-away: bone inside flesh"});
+  return cells;
+}
+
+Scene tet_cutaway_scene(const TetMesh& mesh, const Vec3& cut_normal, const ViewAxes& axes) {
+  const Vec3 centre = bounding_box(mesh.positions).center();
+  const Vec3 n = cut_normal.normalized();
+  TetMesh kept;
+  kept.positions = mesh.positions;
+  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+    Vec3 c = Vec3::Zero();
+    for (Index v : mesh.tets[t]) c += mesh.positions[static_cast<std::size_t>(v)] / 4.0;
+    if ((c - centre).dot(n) <= 0.0) {
+      kept.tets.push_back(mesh.tets[t]);
+      kept.tet_labels.push_back(mesh.label(t));
+    }
+  }
+  Scene scene;
+  scene.environment.up = axes.up;
+  auto flesh = std::make_shared<TriMesh>(tet_boundary_mesh(kept, tissue_flesh));
+  double edge_sum = 0.0;
+  for (const Tri& t : flesh->triangles)
+    edge_sum +=
+        (flesh->positions[static_cast<std::size_t>(t[0])] - flesh->positions[static_cast<std::size_t>(t[1])]).norm();
+  const double mean_edge = flesh->triangles.empty() ? 1.0 : edge_sum / static_cast<double>(flesh->triangle_count());
+  SurfaceMaterial flesh_material = SurfaceMaterial::skin(Vec3f(0.62f, 0.30f, 0.26f));
+  flesh_material.wire_width_mm = 0.035 * mean_edge;
+  flesh_material.crease_angle_deg = 0.0;
+  scene.add(flesh, flesh_material, "flesh");
+  auto bone = std::make_shared<TriMesh>(tet_boundary_mesh(kept, tissue_bone));
+  if (bone->triangle_count() > 0) {
+    SurfaceMaterial bone_material = SurfaceMaterial::bone();
+    bone_material.wire_width_mm = flesh_material.wire_width_mm;
+    bone_material.crease_angle_deg = 0.0;
+    scene.add(bone, bone_material, "bone");
+  }
+  return scene;
+}
+
+BodyViews body_views(const std::string& kind, const ViewAxes& axes) {
+  if (kind == "arm") {
+    // The arm lies along +x with the back of the hand up (+z) and the thumb toward +y.
+    const ViewAxes arm{Vec3::UnitZ(), Vec3::UnitY()};
+    return {arm, "top", "back of the hand", "front", "thumb side", Vec3::UnitZ(), "top"};
+  }
+  return {axes, "front", "front", "left", "side", axes.left(), "left"};
+}
+
+std::vector<SheetCell> tet_model_cells(const BodyViews& views, std::shared_ptr<const TriMesh> skin,
+                                       const TetMesh& volume, const RenderSettings& settings) {
+  Scene plain;
+  plain.environment.up = views.axes.up;
+  plain.add(skin, SurfaceMaterial::skin(), "skin");
+  std::vector<SheetCell> cells;
+  cells.push_back({render_view(plain, settings, views.view_a, views.axes), views.caption_a});
+  cells.push_back({render_view(plain, settings, views.view_b, views.axes), views.caption_b});
+  cells.push_back(
+      {render_view(tet_cutaway_scene(volume, views.cut_normal, views.axes), settings, views.cut_view, views.axes),
+       "tets cut open: flesh and bone"});
   return cells;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/tet_mesh.hpp"
 #include "geometry/tri_mesh.hpp"
 #include "image/image.hpp"
 #include "render/render_settings.hpp"
@@ -43,6 +44,27 @@ Image render_view(Scene scene, const RenderSettings& settings, const std::string
 /// inside flesh (the arm from above and from the thumb side; the head from the front and the left).
 std::vector<SheetCell> phantom_view_cells(const std::string& phantom_name, std::shared_ptr<const TriMesh> skin,
                                           std::shared_ptr<const TriMesh> bone, const RenderSettings& settings);
+
+/// Scene of the tets on one side of the plane through the mesh's centre with normal `cut_normal` (the side
+/// the normal points to is removed), flesh and bone with the tet faces drawn as a wireframe, so the cut shows
+/// the elements and the bone inside the flesh.
+Scene tet_cutaway_scene(const TetMesh& mesh, const Vec3& cut_normal, const ViewAxes& axes);
+
+/// How to look at a body part: its axes, two named views of the skin with captions, and the cut normal and
+/// view of a cut-away (the arm from the back of the hand, cut dorsally; heads from the left, cut through
+/// the midsagittal plane).
+struct BodyViews {
+  ViewAxes axes;
+  std::string view_a, caption_a, view_b, caption_b;
+  Vec3 cut_normal;
+  std::string cut_view;
+};
+/// Views for "arm" (x distal, z dorsal) and for heads in the given axes (any other name).
+BodyViews body_views(const std::string& kind, const ViewAxes& axes = {});
+
+/// Pictures of a tet model: the skin from two sides and the tet cut-away.
+std::vector<SheetCell> tet_model_cells(const BodyViews& views, std::shared_ptr<const TriMesh> skin,
+                                       const TetMesh& volume, const RenderSettings& settings);
 
 /// Axes by name: "lps" (CT: z up, -y front) or "yup" (glTF/OBJ heads: y up, +z front).
 ViewAxes axes_from_name(const std::string& name);

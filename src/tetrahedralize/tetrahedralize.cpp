@@ -47,7 +47,8 @@ constexpr int domain_flesh = 1;
 constexpr int domain_bone = 2;
 
 /// A checked, closed copy of an input surface (repaired when needed).
-TriMesh prepare_surface(const TriMesh& input, const std::string& name, std::vector<std::string>& notes) {
+TriMesh prepare_surface(const TriMesh& input, const std::string& name, bool close_openings,
+                        std::vector<std::string>& notes) {
   input.validate(name);
   require_input(input.triangle_count() > 0, name, "", "the surface is empty (no triangles)");
   TriMesh mesh;
@@ -59,12 +60,19 @@ TriMesh prepare_surface(const TriMesh& input, const std::string& name, std::vect
     // Scan artefacts are small; an opening a quarter of the surface's size is a cut, not a hole to guess.
     RepairOptions repair;
     repair.max_hole_edges = 500;
-    repair.max_hole_diameter = 0.25 * bounding_box(mesh.positions).diagonal();
+    repair.max_hole_diameter = close_openings ? 0.0 : 0.25 * bounding_box(mesh.positions).diagonal();
+    if (close_openings) repair.max_hole_edges = 0;
     const RepairReport done = repair_mesh(mesh, repair);
     if (!done.closed() || !done.manifold()) {
+      std::string hint;
+      if (done.holes_skipped > 0) {
+        hint = "; " + std::to_string(done.holes_skipped) +
+               " opening(s) span more than a quarter of the surface's size (a cut, such as a bust's base, not a "
+               "scan hole): cap them, or let forensim close them (close_openings, --close-openings)";
+      }
       throw InputError(name, "",
                        "the surface is not closed and could not be repaired (" + topology.summary() +
-                           "; after repair: " + done.after.summary() + ")");
+                           "; after repair: " + done.after.summary() + ")" + hint);
     }
     notes.push_back(name + " repaired: " + topology.summary() + " -> " + done.after.summary());
   }
@@ -113,7 +121,7 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   }
   Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
   // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
-  const double cell_size = 0.612 * edge;
+  const double cell_size = 0.612 * edge * o.interior_size_factor;
   Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
                     p::facet_distance = o.surface_distance_fraction * edge,
                     p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
@@ -215,12 +223,6 @@ std::string TetrahedralizeReport::summary() const {
   return out;
 }
 
-std::size_t paper_target_nodes(const std::string& phantom_name) {
-  if (phantom_name == "arm") return 29000;
-  if (phantom_name == "head") return 35000;
-  throw InputError("paper preset", "", "no Table 1 size for '" + phantom_name + "' (known: arm, head)");
-}
-
 TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bone_inputs,
                        const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
   Stopwatch watch;
@@ -231,19 +233,23 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
                 "edge_length_mm", "must be a finite length >= 0");
   require_input(options.edge_length_mm > 0.0 || options.target_nodes > 0 || options.target_tets > 0,
                 "tetrahedralize options", "", "give an edge length, a node count or a tet count");
+  require_input(options.initial_edge_mm >= 0.0 && std::isfinite(options.initial_edge_mm), "tetrahedralize options",
+                "initial_edge_mm", "must be a finite length >= 0");
+  require_input(options.interior_size_factor >= 0.25 && options.interior_size_factor <= 16.0, "tetrahedralize options",
+                "interior_size_factor", "must be in [0.25, 16]");
   require_input(options.radius_edge_bound >= 1.0, "tetrahedralize options", "radius_edge_bound", "must be >= 1");
   require_input(options.surface_distance_fraction > 0.0 && options.surface_distance_fraction <= 1.0,
                 "tetrahedralize options", "surface_distance_fraction", "must be in (0, 1]");
   require_input(options.facet_angle_deg > 0.0 && options.facet_angle_deg <= 30.0, "tetrahedralize options",
                 "facet_angle_deg", "must be in (0, 30]");
 
-  const TriMesh skin = prepare_surface(skin_input, "skin surface", r.notes);
+  const TriMesh skin = prepare_surface(skin_input, "skin surface", options.close_openings, r.notes);
   r.skin_volume_mm3 = enclosed_volume(skin);
   auto skin_winding = std::make_shared<const WindingNumber>(skin);
   std::vector<TriMesh> bones;
   for (std::size_t i = 0; i < bone_inputs.size(); ++i) {
     const std::string name = "bone surface " + std::to_string(i);
-    TriMesh bone = prepare_surface(bone_inputs[i], name, r.notes);
+    TriMesh bone = prepare_surface(bone_inputs[i], name, options.close_openings, r.notes);
     const std::vector<bool> inside = skin_winding->inside_batch(bone.positions);
     const auto outside = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), false));
     if (outside > 0) {
@@ -277,7 +283,10 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   const double target =
       options.target_nodes > 0 ? static_cast<double>(options.target_nodes) : static_cast<double>(options.target_tets);
   const double per_tet = options.target_nodes > 0 ? 1.0 / 5.0 : 1.0;
-  if (by_count) edge = std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
+  if (by_count) {
+    edge = options.initial_edge_mm > 0.0 ? options.initial_edge_mm
+                                         : std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
+  }
   MeshPass pass = mesh_once(skin, bones, edge, options);
   r.passes = 1;
   if (by_count) {

@@ -24,6 +24,12 @@ struct TetrahedralizeOptions {
   /// Target number of tets, used when edge_length_mm and target_nodes are 0.
   std::size_t target_tets = 0;
   double count_tolerance = 0.05;
+  /// First edge length (mm) tried for a count target, e.g. one calibrated for a phantom preset; 0 = estimate
+  /// it from the enclosed volume. A good hint makes one pass enough.
+  double initial_edge_mm = 0.0;
+  /// Interior tets may be this many times larger than the edge length (the boundary keeps the edge length):
+  /// > 1 puts more of the nodes on the surfaces, as simulation meshes that resolve the skin need.
+  double interior_size_factor = 1.0;
   /// Upper bound of the tets' circumradius / shortest edge (Mesh_3 cell_radius_edge_ratio; >= 2 for
   /// guaranteed termination).
   double radius_edge_bound = 2.0;
@@ -36,6 +42,10 @@ struct TetrahedralizeOptions {
   double facet_angle_deg = 25.0;
   /// Mesh_3's sliver perturbation (slower, raises the smallest dihedral angles); exudation always runs.
   bool perturb = true;
+  /// Also close openings larger than a quarter of a surface's size (a bust's base, a limb cut off at the
+  /// wrist) with a refined, faired cap; by default only scan-sized holes are filled and a surface with a large
+  /// opening is rejected.
+  bool close_openings = false;
   /// Seed of Mesh_3's random choices (results are deterministic for a given seed and thread count).
   unsigned seed = 0;
 };
@@ -53,9 +63,6 @@ struct TetrahedralizeReport {
   std::vector<std::string> notes;  ///< repairs and clipping done on the inputs, in words
   std::string summary() const;
 };
-
-/// Named presets of the paper's Table 1 sizes: target node counts for "paper" (arm 29k, head 35k).
-std::size_t paper_target_nodes(const std::string& phantom_name);
 
 /// Tetrahedralises the volume inside `skin` (closed, outward triangles in mm), labelling tets inside any of
 /// `bones` tissue_bone and the rest tissue_flesh. The boundary and the flesh/bone interfaces are sampled on

@@ -14,11 +14,13 @@ using namespace forensim;
 // pictures and a run record.
 TEST(Demo, WritesReportWithPicturesAndTimings) {
   const auto dir = test::scratch_dir("demo");
-  const auto result = test::run_cli("demo --out " + dir.string() + " --picture-size 128 --samples 2");
+  const auto result =
+      test::run_cli("demo --out " + dir.string() + " --picture-size 128 --samples 2 --model-size small");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::string html = read_file(dir / "report.html");
   EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
   EXPECT_NE(html.find("Timings"), std::string::npos);
+  EXPECT_NE(html.find("Body models: sizes, accuracy, quality and time"), std::string::npos);
   EXPECT_EQ(html.find("failed"), std::string::npos) << "a demo stage failed; see the report";
   const auto record = nlohmann::json::parse(read_file(dir / "run.json"));
   EXPECT_EQ(record["command"], "demo");

@@ -98,3 +98,43 @@ TEST(Cli, IsosurfaceOfThePhantomIsClosed) {
   EXPECT_NE(result.output.find("closed, manifold, oriented"), std::string::npos) << result.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "skin.ply"));
 }
+
+TEST(Cli, TetrahedralizeWritesTetsModelAndPicture) {
+  const auto dir = test::scratch_dir("cli_tet");
+  std::filesystem::remove_all(dir / "model");
+  write_cube_obj(dir / "cube.obj", 30.0);
+  const auto result = run_cli("tetrahedralize --skin " + (dir / "cube.obj").string() +
+                              " --edge 10 --surface-distance 0.1 --skin-triangles 400 --picture-size 96" + " -o " +
+                              (dir / "cube.vtu").string() + " --model " + (dir / "model").string() + " --render " +
+                              (dir / "cube.png").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("radius-edge ratio"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("tracking:"), std::string::npos) << result.output;
+  const std::string vtu = read_file(dir / "cube.vtu");
+  EXPECT_NE(vtu.find("Name=\"min_dihedral_deg\""), std::string::npos);
+  EXPECT_NE(vtu.find("Name=\"label\""), std::string::npos);
+  const auto model = nlohmann::json::parse(read_file(dir / "model" / "model.json"));
+  EXPECT_EQ(model["format"], "forensim body model");
+  EXPECT_GT(model["counts"]["skin_vertices"].get<int>(), 150);
+  EXPECT_TRUE(std::filesystem::exists(dir / "model" / "skin.vtu"));
+  EXPECT_GT(png_size(dir / "cube.png").first, 3 * 96) << "three pictures side by side";
+}
+
+TEST(Cli, TetrahedralizeRejectsBadInputWithoutWriting) {
+  const auto dir = test::scratch_dir("cli_tet");
+  {
+    std::ofstream out(dir / "flat.obj");
+    out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  std::filesystem::remove(dir / "flat.vtu");
+  const auto open =
+      run_cli("tetrahedralize --skin " + (dir / "flat.obj").string() + " --edge 1 -o " + (dir / "flat.vtu").string());
+  EXPECT_EQ(open.exit_code, 3) << open.output;
+  EXPECT_NE(open.output.find("skin surface"), std::string::npos) << open.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "flat.vtu"));
+  const auto both = run_cli("tetrahedralize --phantom arm --size paper --edge 5");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  const auto size = run_cli("tetrahedralize --phantom arm --size huge");
+  EXPECT_EQ(size.exit_code, 3) << size.output;
+  EXPECT_NE(size.output.find("huge"), std::string::npos) << size.output;
+}

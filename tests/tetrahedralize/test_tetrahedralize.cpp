@@ -86,9 +86,3 @@ TEST(Tetrahedralize, BadInputsAreInputErrors) {
   nan.positions[0].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(tetrahedralize(nan, {}, o), InputError);
 }
-
-TEST(Tetrahedralize, PaperPresetKnowsArmAndHead) {
-  EXPECT_EQ(paper_target_nodes("arm"), 29000u);
-  EXPECT_EQ(paper_target_nodes("head"), 35000u);
-  EXPECT_THROW(paper_target_nodes("foot"), InputError);
-}

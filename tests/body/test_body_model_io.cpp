@@ -1,0 +1,90 @@
+#include "body/body_model_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "body_test_meshes.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "support/test_support.hpp"
+#include "tet_io/vtu_writer.hpp"
+
+using namespace forensim;
+
+namespace {
+
+BodyModel box_model() {
+  TetMesh volume = make_box_tet_mesh(Vec3::Zero(), Vec3::Constant(10.0), 3, 3, 3);
+  for (std::size_t t = 0; t < volume.tets.size(); ++t)
+    volume.tet_labels.push_back(t % 7 == 0 ? tissue_bone : tissue_flesh);
+  TriMesh skin = make_box_mesh(Vec3::Constant(-0.2), Vec3::Constant(10.2), 6);
+  return make_body_model(std::move(volume), std::move(skin), {"left", "right"},
+                         [](const Vec3& p) { return p.x() < 5.0 ? 0 : 1; });
+}
+
+void replace_in_file(const std::filesystem::path& path, const std::string& from, const std::string& to) {
+  std::string text = read_file(path);
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+  write_file_atomic(path, text);
+}
+
+}  // namespace
+
+TEST(BodyModelIo, RoundTripIsExact) {
+  const BodyModel model = box_model();
+  const auto folder = test::scratch_dir("body_model_io") / "box";
+  write_body_model(folder, model);
+  const BodyModel back = read_body_model(folder);
+  EXPECT_EQ(back.volume.positions, model.volume.positions);
+  EXPECT_EQ(back.volume.tets, model.volume.tets);
+  EXPECT_EQ(back.volume.tet_labels, model.volume.tet_labels);
+  EXPECT_EQ(back.skin.positions, model.skin.positions);
+  EXPECT_EQ(back.skin.triangles, model.skin.triangles);
+  EXPECT_EQ(back.part_names, model.part_names);
+  EXPECT_EQ(back.skin_vertex_parts, model.skin_vertex_parts);
+  EXPECT_EQ(back.tet_parts, model.tet_parts);
+  EXPECT_EQ(back.tracking.boundary_face, model.tracking.boundary_face);
+  EXPECT_EQ(back.tracking.face_nodes, model.tracking.face_nodes);
+  EXPECT_EQ(back.tracking.weights, model.tracking.weights);
+  EXPECT_EQ(back.tracking.rest_distance, model.tracking.rest_distance);
+  EXPECT_EQ(back.tracking.side, model.tracking.side);
+  EXPECT_EQ(back.tracking.method, model.tracking.method);
+  EXPECT_TRUE(back.skin.vertex_fields.empty()) << "tracking arrays must not leak into the skin's fields";
+  EXPECT_TRUE(back.volume.tet_fields.empty());
+}
+
+TEST(BodyModelIo, BadFoldersAreClearErrors) {
+  const auto root = test::scratch_dir("body_model_io");
+  EXPECT_THROW(read_body_model(root / "does_not_exist"), IoError);
+
+  const auto folder = root / "bad";
+  write_body_model(folder, box_model());
+  replace_in_file(folder / "model.json", "\"version\": 1", "\"version\": 7");
+  EXPECT_THROW(read_body_model(folder), InputError);
+
+  write_body_model(folder, box_model());
+  replace_in_file(folder / "model.json", "\"skin.vtu\"", "\"../skin.vtu\"");
+  EXPECT_THROW(read_body_model(folder), InputError);
+
+  // A skin from another model: tracking arrays missing.
+  write_body_model(folder, box_model());
+  write_vtu(folder / "skin.vtu", make_box_mesh(Vec3::Zero(), Vec3::Constant(1.0), 2));
+  try {
+    read_body_model(folder);
+    FAIL() << "skin without tracking accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("skin.vtu"), std::string::npos) << e.what();
+  }
+
+  // Tracking that no longer matches the volume (a different volume written over it).
+  write_body_model(folder, box_model());
+  TetMesh other = make_box_tet_mesh(Vec3::Zero(), Vec3::Constant(10.0), 2, 2, 2);
+  write_vtu(folder / "volume.vtu", other);
+  EXPECT_THROW(read_body_model(folder), InputError);
+
+  std::ofstream(folder / "model.json") << "{ not json";
+  EXPECT_THROW(read_body_model(folder), InputError);
+}
