@@ -323,14 +323,12 @@ int run_demo(const DemoArgs& a) {
                      "as the bone region) tetrahedralised with the same mesher.");
       if (std::filesystem::exists(data / "hand-mesh" / "hand_closed.obj")) {
         TetrahedralizeOptions options;
-        options.target_nodes = 8000;
+        options.edge_length_mm = 11.0;  // about 8000 nodes
         real_model_section(ctx, "hand scan", import_mesh(data / "hand-mesh" / "hand_closed.obj", {"auto", 200.0}), {},
                            options, ViewAxes{Vec3::UnitY(), Vec3::UnitZ()}, "model_hand_scan");
       }
       const ScalarGrid grid = read_volume(data / "ct-head-headsq" / "quarter.nhdr");
-      IsoSurfaceOptions iso;
-      iso.keep_largest_components = 1;
-      const TriMesh skin = extract_iso_surface(grid, 500.0, iso);
+      const TriMesh skin = ct_body_surfaces(grid, 500.0, 1150.0).skin;
       TetrahedralizeOptions options;
       options.target_nodes = 20000;
       TetrahedralizeReport r;

@@ -21,7 +21,6 @@
 #include "render/sheet.hpp"
 #include "tetrahedralize/tet_quality.hpp"
 #include "tetrahedralize/tetrahedralize.hpp"
-#include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
 
 namespace forensim::cli {
@@ -42,6 +41,7 @@ struct TetArgs {
   unsigned seed = 0;
   int picture_size = 640;
   bool close_openings = false;
+  bool non_manifold = false;
 };
 
 /// The skin of a model from real input: as given, or remeshed isotropically to about `triangles`.
@@ -63,6 +63,7 @@ int run_tetrahedralize(const TetArgs& a) {
   options.min_dihedral_deg = a.min_dihedral;
   options.seed = a.seed;
   options.close_openings = a.close_openings;
+  options.manifold_boundary = !a.non_manifold;
   const bool phantom_input = a.skin.empty() && a.ct.empty();
   if (!a.size.empty() && !phantom_input) throw Error("--size applies to the built-in phantoms only", ErrorKind::usage);
   if (!a.size.empty() && (a.edge > 0 || a.nodes > 0 || a.tets > 0))
@@ -105,9 +106,7 @@ int run_tetrahedralize(const TetArgs& a) {
                   a.skin_iso, a.bone_iso);
       mesh = tetrahedralize_ct(grid, a.skin_iso, a.bone_iso, options, &report);
       if (!a.model.empty() || !a.render.empty()) {
-        IsoSurfaceOptions iso;
-        iso.keep_largest_components = 1;
-        skin = model_skin(extract_iso_surface(grid, a.skin_iso, iso), a.skin_triangles);
+        skin = model_skin(ct_body_surfaces(grid, a.skin_iso, a.bone_iso).skin, a.skin_triangles);
       }
       views = body_views("head", axes_from_name(a.axes));
     } else if (!a.skin.empty()) {
@@ -203,6 +202,7 @@ const RegisterCommand tetrahedralize_command{
           ->check(CLI::Range(0.0, 30.0));
       sub->add_flag("--close-openings", a->close_openings,
                     "Cap large openings of the surfaces too (a bust's base, a cut limb), not only scan holes");
+      sub->add_flag("--non-manifold", a->non_manifold, "Do not force a 2-manifold boundary (thin, touching shells)");
       sub->add_option("--seed", a->seed, "Seed of the mesher's random choices");
       sub->add_option("--skin-triangles", a->skin_triangles,
                       "Remesh the model's skin to about this many triangles (default: the input skin as is)");

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "geometry/bounding_box.hpp"
 #include "geometry/tet_boundary.hpp"
+#include "image/jpeg_io.hpp"
 #include "image/png_io.hpp"
 #include "render/renderer.hpp"
 
@@ -53,7 +54,7 @@ std::shared_ptr<const Image> load_base_texture(const TriMesh& mesh) {
   const std::string& path = mesh.material.base_color_texture;
   if (path.empty()) return nullptr;
   try {
-    return std::make_shared<const Image>(read_png(path));
+    return std::make_shared<const Image>(read_image(path));
   } catch (const Error& e) {
     spdlog::warn("texture {} not used: {}", path, e.what());
     return nullptr;

@@ -123,7 +123,7 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
   const double cell_size = 0.612 * edge * o.interior_size_factor;
   Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
-                    p::facet_distance = o.surface_distance_fraction * edge,
+                    p::facet_distance = std::max(o.surface_distance_fraction * edge, o.min_surface_distance_mm),
                     p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
 
   // Seed every surface (skin and each bone component) with points, so no bone is missed by the random
@@ -161,12 +161,15 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
     throw InputError("skin surface", "",
                      "too small or too thin to mesh at an edge length of " + std::to_string(edge) + " mm");
   }
+  // The manifold criterion keeps the boundary a closed 2-manifold; surfaces with near-contacts (CT skulls at
+  // a few voxels' thickness) can need it off.
+  const auto manifold = o.manifold_boundary ? p::manifold() : p::non_manifold();
   if (o.perturb) {
-    CGAL::refine_mesh_3(complex, domain, criteria, p::manifold(), p::no_lloyd(), p::no_odt(),
+    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(),
                         p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg),
                         p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
   } else {
-    CGAL::refine_mesh_3(complex, domain, criteria, p::manifold(), p::no_lloyd(), p::no_odt(), p::no_perturb(),
+    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(),
                         p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
   }
 
@@ -324,18 +327,21 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   return std::move(pass.mesh);
 }
 
-TetMesh tetrahedralize_ct(const ScalarGrid& grid, double skin_iso, double bone_iso,
-                          const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
+CtBodySurfaces ct_body_surfaces(const ScalarGrid& grid, double skin_iso, double bone_iso) {
   require_input(std::isfinite(skin_iso) && std::isfinite(bone_iso) && bone_iso > skin_iso, "CT iso-values", "",
                 "need finite iso-values with bone above skin");
+  // Marching-cubes surfaces carry voxel staircases: smooth them (Taubin keeps the volume) and do not ask the
+  // mesher to follow them closer than a quarter voxel.
   IsoSurfaceOptions iso;
   iso.keep_largest_components = 1;
+  iso.smoothing_iterations = 10;
   TriMesh skin = extract_iso_surface(grid, skin_iso, iso);
   require_input(skin.triangle_count() > 0, "CT volume", "skin iso-value " + std::to_string(skin_iso),
                 "no sample lies above the skin iso-value");
   iso.keep_largest_components = 0;
   const TriMesh bone_all = extract_iso_surface(grid, bone_iso, iso);
-  std::vector<TriMesh> bones;
+  CtBodySurfaces out;
+  std::vector<TriMesh>& bones = out.bones;
   if (bone_all.triangle_count() > 0) {
     // Keep the bone components that lie entirely inside the skin and enclose a positive volume (inner
     // shells of hollow bones are part of the component set of their outer shell's volume only when nested;
@@ -353,10 +359,37 @@ TetMesh tetrahedralize_ct(const ScalarGrid& grid, double skin_iso, double bone_i
     }
     for (std::size_t t = 0; t < bone_all.triangle_count(); ++t)
       keep[t] = component_ok[static_cast<std::size_t>(component[t])] != 0;
+    // Specks of bone-dense noise (and tiny ossicles) would only force refinement: keep components enclosing at
+    // least 0.5 % of the largest one's volume.
+    std::vector<double> component_volume(static_cast<std::size_t>(components), 0.0);
+    for (std::size_t t = 0; t < bone_all.triangle_count(); ++t) {
+      const Tri& tri = bone_all.triangles[t];
+      component_volume[static_cast<std::size_t>(component[t])] +=
+          bone_all.positions[static_cast<std::size_t>(tri[0])].dot(
+              bone_all.positions[static_cast<std::size_t>(tri[1])].cross(
+                  bone_all.positions[static_cast<std::size_t>(tri[2])])) /
+          6.0;
+    }
+    const double largest = *std::max_element(component_volume.begin(), component_volume.end());
+    for (std::size_t t = 0; t < bone_all.triangle_count(); ++t)
+      keep[t] = keep[t] && std::abs(component_volume[static_cast<std::size_t>(component[t])]) >= 0.005 * largest;
     TriMesh bone = extract_triangles(bone_all, keep);
     if (bone.triangle_count() > 0 && enclosed_volume(bone) > 0.0) bones.push_back(std::move(bone));
   }
-  return tetrahedralize(skin, bones, options, report);
+  out.skin = std::move(skin);
+  return out;
+}
+
+TetMesh tetrahedralize_ct(const ScalarGrid& grid, double skin_iso, double bone_iso,
+                          const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
+  const CtBodySurfaces surfaces = ct_body_surfaces(grid, skin_iso, bone_iso);
+  // CT skulls are a few voxels thick and their iso-surfaces nearly touch themselves: Mesh_3's manifold
+  // criterion then refines without bound (measured on headsq: out of memory at 12 GB), while without it the
+  // same skull meshes in seconds. Nor is the boundary asked to follow the surfaces closer than half a voxel.
+  TetrahedralizeOptions ct_options = options;
+  ct_options.manifold_boundary = false;
+  ct_options.min_surface_distance_mm = std::max(options.min_surface_distance_mm, 0.5 * grid.spacing.minCoeff());
+  return tetrahedralize(surfaces.skin, surfaces.bones, ct_options, report);
 }
 
 }  // namespace forensim

@@ -38,8 +38,12 @@ struct TetrahedralizeOptions {
   /// Largest distance (mm) between the boundary triangles and the input surfaces, as a fraction of the edge
   /// length; the volume error shrinks with it.
   double surface_distance_fraction = 0.01;
+  /// Floor (mm) of that distance, e.g. a fraction of a CT's voxel so the mesh does not chase voxel steps.
+  double min_surface_distance_mm = 0.0;
   /// Boundary triangles' smallest angle (degrees, <= 30).
   double facet_angle_deg = 25.0;
+  /// Ask Mesh_3 for a 2-manifold boundary (refines until every boundary vertex has a disk neighbourhood).
+  bool manifold_boundary = true;
   /// Mesh_3's sliver perturbation (slower, raises the smallest dihedral angles); exudation always runs.
   bool perturb = true;
   /// Also close openings larger than a quarter of a surface's size (a bust's base, a limb cut off at the
@@ -73,9 +77,21 @@ struct TetrahedralizeReport {
 TetMesh tetrahedralize(const TriMesh& skin, const std::vector<TriMesh>& bones, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report = nullptr);
 
-/// Tetrahedralises a CT volume: the skin is the largest component of the `skin_iso` iso-surface, the bones
-/// the components of the `bone_iso` iso-surface that lie inside the skin (extract_iso_surface; values above
-/// the iso-value are inside). Throws InputError when no skin is found.
+/// Skin and bone surfaces of a CT volume, as tetrahedralize_ct meshes them: the skin is the largest component
+/// of the `skin_iso` iso-surface, the bones the components of the `bone_iso` iso-surface that lie inside the
+/// skin and enclose at least 0.5 % of the largest one's volume (extract_iso_surface with 10 Taubin steps to
+/// remove voxel staircases; values above the iso-value are inside). Throws InputError for non-finite
+/// iso-values, bone not above skin, or no skin.
+struct CtBodySurfaces {
+  TriMesh skin;
+  std::vector<TriMesh> bones;  ///< one surface (all kept components) or none
+};
+CtBodySurfaces ct_body_surfaces(const ScalarGrid& grid, double skin_iso, double bone_iso);
+
+/// Tetrahedralises a CT volume: ct_body_surfaces() meshed by tetrahedralize(), with the boundary asked to
+/// follow the surfaces no closer than half the smallest voxel spacing (the surfaces are no more accurate than
+/// that) and without the manifold criterion (thin skulls nearly touch themselves; the boundary stays closed
+/// but may have non-manifold vertices where they do).
 TetMesh tetrahedralize_ct(const ScalarGrid& grid, double skin_iso, double bone_iso,
                           const TetrahedralizeOptions& options, TetrahedralizeReport* report = nullptr);
 

@@ -1,0 +1,91 @@
+#include "image/jpeg_io.hpp"
+
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "image/png_io.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+
+namespace {
+
+void append_bytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+}
+
+/// A smooth RGB test picture encoded as JPEG at high quality.
+std::string gradient_jpeg(int w, int h) {
+  std::string pixels(static_cast<std::size_t>(w * h * 3), '\0');
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      unsigned char* p = reinterpret_cast<unsigned char*>(&pixels[static_cast<std::size_t>((y * w + x) * 3)]);
+      p[0] = static_cast<unsigned char>(255 * x / (w - 1));
+      p[1] = static_cast<unsigned char>(255 * y / (h - 1));
+      p[2] = 128;
+    }
+  std::string out;
+  stbi_write_jpg_to_func(append_bytes, &out, w, h, 3, pixels.data(), 95);
+  return out;
+}
+
+}  // namespace
+
+TEST(Jpeg, DecodesToLinearColourCloseToTheSource) {
+  const std::string bytes = gradient_jpeg(64, 32);
+  const Image linear = decode_jpeg(bytes);
+  ASSERT_EQ(linear.width(), 64);
+  ASSERT_EQ(linear.height(), 32);
+  ASSERT_EQ(linear.channels(), 3);
+  const Image stored = decode_jpeg(bytes, "test", false);
+  double worst = 0.0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      worst = std::max(worst, std::abs(stored.at(x, y, 0) - x / 63.0));
+      worst = std::max(worst, std::abs(stored.at(x, y, 1) - y / 31.0));
+    }
+  EXPECT_LT(worst, 0.04) << "JPEG at quality 95 keeps a smooth gradient";
+  // sRGB 0.5 decodes to about 0.214 linear.
+  EXPECT_NEAR(linear.at(10, 10, 2), 0.2158f, 0.02f);
+}
+
+TEST(Jpeg, RejectsCorruptAndForeignData) {
+  std::string bytes = gradient_jpeg(16, 16);
+  EXPECT_THROW(decode_jpeg(bytes.substr(0, 40)), InputError);
+  EXPECT_THROW(decode_jpeg("not a jpeg at all"), InputError);
+  // A SOF header declaring 65535 x 65535 pixels.
+  std::string huge = bytes;
+  for (std::size_t i = 0; i + 8 < huge.size(); ++i) {
+    if (static_cast<unsigned char>(huge[i]) == 0xFF && static_cast<unsigned char>(huge[i + 1]) == 0xC0) {
+      huge[i + 5] = huge[i + 6] = huge[i + 7] = huge[i + 8] = static_cast<char>(0xFF);
+      break;
+    }
+  }
+  EXPECT_THROW(decode_jpeg(huge), InputError);
+}
+
+TEST(Jpeg, ReadImageChoosesTheDecoderByContent) {
+  const auto dir = test::scratch_dir("jpeg");
+  write_file_atomic(dir / "picture.png", gradient_jpeg(8, 8));  // a JPEG under a misleading name
+  EXPECT_EQ(read_image(dir / "picture.png").width(), 8);
+  write_png(dir / "real.png", Image(5, 3, 3, 0.5f));
+  EXPECT_EQ(read_image(dir / "real.png").height(), 3);
+  write_file_atomic(dir / "text.jpg", "hello");
+  EXPECT_THROW(read_image(dir / "text.jpg"), InputError);
+}
+
+TEST(Jpeg, ReadsAScannedHeadsColourMap) {
+  FORENSIM_REQUIRE_DATA(path, "head-scan-lee-perry-smith/Map-COL.jpg");
+  const Image map = read_jpeg(path);
+  EXPECT_GE(map.width(), 1024);
+  EXPECT_EQ(map.channels(), 3);
+  double red = 0.0, blue = 0.0;
+  for (int y = 0; y < map.height(); y += 16)
+    for (int x = 0; x < map.width(); x += 16) red += map.at(x, y, 0), blue += map.at(x, y, 2);
+  EXPECT_GT(red, blue) << "skin is redder than it is blue";
+}
