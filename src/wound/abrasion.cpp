@@ -64,6 +64,14 @@ std::pair<int, int> erosion_range(const WoundCanvas& c, const AbrasionParams& p,
   return {lo, hi};
 }
 
+// Eq. 4.8's maxOuterGradBorder. Never below the deepest inside distance, so the wound closes at position 1
+// whatever the discrete border gives for the diameter.
+double max_outer_border_mm(const WoundCanvas& c, const AbrasionParams& p) {
+  double deepest = 0.0;
+  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
+  return p.thesis_closing_distance ? std::max(c.closing_distance_mm * 0.5, deepest) : deepest;
+}
+
 }  // namespace
 
 double AbrasionParams::reach_mm() const {
@@ -161,11 +169,7 @@ MapSet ScabKey::render(const WoundCanvas& c, double) const {
 }
 
 std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double position) const {
-  // Eq. 4.8. maxOuterGradBorder is half the closing distance; it is raised to the deepest inside distance
-  // when the discrete border makes that larger, so the wound always closes at position 1.
-  double deepest = 0.0;
-  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
-  const double max_outer = std::max(c.closing_distance_mm * 0.5, deepest);
+  const double max_outer = max_outer_border_mm(c, m_params);
   const double shrink =
       m_params.shrink_min + (m_params.shrink_max - m_params.shrink_min) * hash_uniform(c.seed, 0x4D41);
   const double outer = max_outer * std::clamp(position, 0.0, 1.0);
@@ -176,9 +180,7 @@ MapSet MaturationKey::render(const WoundCanvas& c, double position) const {
   const AbrasionParams& p = m_params;
   MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
   const auto [outer, inner] = borders_mm(c, position);
-  double deepest = 0.0;
-  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
-  const double half = std::max(c.closing_distance_mm * 0.5, deepest);
+  const double half = max_outer_border_mm(c, p);
   for_rows(c.height(), [&](int y) {
     for (int x = 0; x < c.width(); ++x) {
       const Vec4f skin = c.upper_skin.rgba(x, y);

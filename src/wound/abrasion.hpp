@@ -25,6 +25,11 @@ struct AbrasionParams {
   double scab_height_mm = 0.8;    ///< scab thickness at height noise 1 (the thesis's displacement scale is unstated)
   float skin_reflection = 0.25f;  ///< reflection of healthy skin (the thesis uses a specularity texture)
   double shrink_min = 0.4, shrink_max = 0.8;  ///< eq. 4.8's rand(0.4, 0.8)
+  /// Maturation's maxOuterGradBorder: true = the thesis's half closing distance (half the diameter, right for
+  /// the round convex wounds it draws); false = the deepest distance from the border inside the wound, the
+  /// distance a wound of any shape must close (equal to half the diameter for a disk; much smaller for a long
+  /// scrape, which the thesis's rule would leave nearly skin-coloured from the start).
+  bool thesis_closing_distance = false;
 
   /// Thesis texels -> mm on the skin.
   double px_to_mm(double px) const { return px / thesis_texels_per_mm; }
@@ -92,8 +97,9 @@ class ScabKey : public KeyPosition {
   AbrasionParams m_params;
 };
 
-/// Chapter 4.3.5: re-rendered at every position p: closing distance c (Algorithm 4.3), eq. 4.8 borders
-/// outer = c/2 p, inner = outer + c/2 rand(0.4, 0.8) (seeded), Algorithm 4.4 inside the shape with the
+/// Chapter 4.3.5: re-rendered at every position p: closing distance c (Algorithm 4.3, or the deepest inside
+/// distance, see AbrasionParams::thesis_closing_distance), eq. 4.8 borders outer = c/2 p, inner = outer + c/2
+/// rand(0.4, 0.8) (seeded), Algorithm 4.4 inside the shape with the
 /// distance to the border: skin up to outer, Lerp(skin, WOUND_RED) up to inner, then Lerp(WOUND_RED,
 /// WOUND_WHITE) towards the centre. The wound area falls to zero at p = 1.
 class MaturationKey : public KeyPosition {

@@ -48,7 +48,7 @@ std::vector<double> parse_durations(const std::string& list, const std::string& 
   return out;
 }
 
-std::string format_duration(double seconds) {
+std::string format_injury_time(double seconds) {
   struct Unit {
     double s;
     const char* name;

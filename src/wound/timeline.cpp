@@ -150,7 +150,7 @@ nlohmann::json Timeline::describe() const {
     const auto& e = m_entries[i];
     nlohmann::json x;
     x["time_s"] = e.time_s;
-    x["time"] = format_duration(e.time_s);
+    x["time"] = format_injury_time(e.time_s);
     x["phase"] = e.key->name();
     x["label"] = e.label;
     x["local_position"] = e.local_position;
