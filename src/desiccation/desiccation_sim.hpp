@@ -35,7 +35,8 @@ struct DesiccationSettings {
   bool deform = true;        ///< solve the volume deformation (false: moisture only)
   bool quasi_static = true;  ///< quasi-static deformation per step (long steps); false: one dynamic step
   DiffusionSettings diffusion;
-  CorotationalSettings elastic;
+  /// Quasi-static solves stop when no node moves more than 1e-5 mm (far below what a render shows).
+  CorotationalSettings elastic{0.0, 0.0, RigidMode::fixed, 1e3, 20, 1e-5};
   /// Checks every part; throws InputError naming `source`.
   void validate(const std::string& source) const;
 };
