@@ -118,21 +118,20 @@ double AbrasionParams::reach_mm() const {
   return px_to_mm(std::max(glow_thickness_px, scab_gradient_px)) + 0.5;
 }
 
-MapSet VasoconstrictionKey::render(const WoundCanvas& c, double) const {
+void VasoconstrictionKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
   check_canvas(c);
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), m_params.skin_reflection);
+  prepare_map_set(m, c.width(), c.height(), m_params.skin_reflection);
   for_rows(c.height(), [&](int y) {
     const Row r = row(c, m, y);
     for (int x = 0; x < c.width(); ++x)
       std::copy_n((r.shape[x] >= 0.5f ? r.lower : r.upper) + 4 * x, 4, r.color + 4 * x);
   });
-  return m;
 }
 
-MapSet VasodilationKey::render(const WoundCanvas& c, double) const {
+void VasodilationKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const auto [a0, a1] = erosion_range(c, p, 3, 5);
   const auto [b0, b1] = erosion_range(c, p, 3, 10);
   // Erode the shape over its box plus a margin wider than the kernels, so the outside stays in view.
@@ -157,13 +156,12 @@ MapSet VasodilationKey::render(const WoundCanvas& c, double) const {
       }
     }
   });
-  return m;
 }
 
-MapSet ScabFormingKey::render(const WoundCanvas& c, double) const {
+void ScabFormingKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const Image bottom = thesis_noise(c, p, 5, 0.85, 0.54, 0.21, 0xB0);
   const Image speckle = thesis_noise(c, p, 5, 0.48, 0.16, 0.15, 0x5E);
   const float glow_mm = static_cast<float>(p.px_to_mm(p.glow_thickness_px));
@@ -185,13 +183,12 @@ MapSet ScabFormingKey::render(const WoundCanvas& c, double) const {
       store(r.color + 4 * x, out);
     }
   });
-  return m;
 }
 
-MapSet ScabKey::render(const WoundCanvas& c, double) const {
+void ScabKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const Image mask = thesis_noise(c, p, 7, 1.0, 0.44, 0.02, 0x4A);
   const Image body = thesis_noise(c, p, 5, 0.54, 0.3, 0.69, 0x4B);
   const Image rim_noise = thesis_noise(c, p, 5, 0.33, 0.60, 0.59, 0x4C);
@@ -222,7 +219,6 @@ MapSet ScabKey::render(const WoundCanvas& c, double) const {
       r.reflection[x] = shine.at(bx, by);
     }
   });
-  return m;
 }
 
 std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double position) const {
@@ -233,10 +229,10 @@ std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double
   return {outer, outer + max_outer * shrink};
 }
 
-MapSet MaturationKey::render(const WoundCanvas& c, double position) const {
+void MaturationKey::render_into(const WoundCanvas& c, double position, MapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), p.skin_reflection);
+  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const auto [outer, inner] = borders_mm(c, position);
   const double half = max_outer_border_mm(c, p);
   const float fo = static_cast<float>(outer), fi = static_cast<float>(inner);
@@ -257,7 +253,6 @@ MapSet MaturationKey::render(const WoundCanvas& c, double position) const {
       }
     }
   });
-  return m;
 }
 
 std::shared_ptr<const KeyPosition> make_abrasion_key(const std::string& phase, const AbrasionParams& params) {
