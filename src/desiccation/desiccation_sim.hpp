@@ -31,7 +31,7 @@ namespace forensim {
 struct DesiccationSettings {
   TissueDrying tissue;
   TissueMaterials materials;
-  Environment environment;
+  DryingEnvironment environment;
   bool deform = true;        ///< solve the volume deformation (false: moisture only)
   bool quasi_static = true;  ///< quasi-static deformation per step (long steps); false: one dynamic step
   DiffusionSettings diffusion;

@@ -13,7 +13,7 @@ constexpr double water_molar_mass = 0.018015;  // kg/mol
 constexpr double gas_constant = 8.314462618;   // J/(mol K)
 }  // namespace
 
-void Environment::validate(const std::string& source) const {
+void DryingEnvironment::validate(const std::string& source) const {
   require_input(std::isfinite(air_temperature_c) && air_temperature_c > -40.0 && air_temperature_c < 80.0, source,
                 "temperature", "must be between -40 and 80 C");
   require_input(std::isfinite(relative_humidity) && relative_humidity >= 0.0 && relative_humidity < 1.0, source,
@@ -40,7 +40,7 @@ double equilibrium_moisture(const SorptionIsotherm& iso, double activity) {
   return iso.monolayer_moisture * iso.guggenheim_c * ka / ((1.0 - ka) * (1.0 - ka + iso.guggenheim_c * ka));
 }
 
-double air_mass_transfer_m_per_s(const Environment& env) {
+double air_mass_transfer_m_per_s(const DryingEnvironment& env) {
   const double t_ratio = (env.air_temperature_c + kelvin) / 298.15;
   const double d_va = 2.5e-5 * std::pow(t_ratio, 1.75);
   const double nu = 1.55e-5 * std::pow(t_ratio, 1.75);
@@ -52,7 +52,7 @@ double air_mass_transfer_m_per_s(const Environment& env) {
   return sh * d_va / env.body_diameter_m;
 }
 
-double surface_transfer_m_per_s(const Environment& env, const TissueDrying& tissue) {
+double surface_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue) {
   const double x_e = equilibrium_moisture(env.isotherm, env.relative_humidity);
   const double drive = std::max(tissue.initial_moisture - x_e, 1e-6);
   return air_mass_transfer_m_per_s(env) * saturation_vapour_density_kg_per_m3(env.air_temperature_c) *
@@ -60,7 +60,7 @@ double surface_transfer_m_per_s(const Environment& env, const TissueDrying& tiss
 }
 
 std::vector<double> face_cover(const std::vector<Vec3>& positions, const std::vector<Tri>& faces,
-                               const Environment& env) {
+                               const DryingEnvironment& env) {
   std::vector<double> cover(faces.size(), env.skin_cover);
   if (!env.on_ground) return cover;
   const Vec3 up = env.up.normalized();

@@ -36,7 +36,7 @@ struct SorptionIsotherm {
   double gab_k = 0.85;               ///< K (< 1)
 };
 
-struct Environment {
+struct DryingEnvironment {
   double air_temperature_c = 35.0;  ///< T, air temperature, degrees Celsius
   double relative_humidity = 0.3;   ///< RH (0..1); also the water activity at equilibrium
   double air_speed_m_per_s = 1.0;   ///< v, wind speed
@@ -62,14 +62,14 @@ double saturation_vapour_density_kg_per_m3(double temperature_c);
 double equilibrium_moisture(const SorptionIsotherm& isotherm, double activity);
 
 /// Air-side mass-transfer coefficient h_m (m/s) of a cylinder of env.body_diameter_m in cross flow.
-double air_mass_transfer_m_per_s(const Environment& env);
+double air_mass_transfer_m_per_s(const DryingEnvironment& env);
 
 /// Robin coefficient h (m/s) of -D dX/dn = h (X - X_e) for `tissue` in `env` (see above).
-double surface_transfer_m_per_s(const Environment& env, const TissueDrying& tissue);
+double surface_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue);
 
 /// Cover factor (0..1) of each face: env.skin_cover, or 0 where the face lies on the ground.
 /// `faces`: node triples, counter-clockwise from outside; `positions`: mesh nodes, mm.
 std::vector<double> face_cover(const std::vector<Vec3>& positions, const std::vector<Tri>& faces,
-                               const Environment& env);
+                               const DryingEnvironment& env);
 
 }  // namespace forensim

@@ -7,14 +7,14 @@
 
 using namespace forensim;
 
-TEST(Environment, SaturationVapourDensityKnownValues) {
+TEST(DryingEnvironment, SaturationVapourDensityKnownValues) {
   // Steam tables: 0.0173 kg/m^3 at 20 C, 0.0304 at 30 C, 0.0512 at 40 C.
   EXPECT_NEAR(saturation_vapour_density_kg_per_m3(20.0), 0.0173, 0.0003);
   EXPECT_NEAR(saturation_vapour_density_kg_per_m3(30.0), 0.0304, 0.0005);
   EXPECT_NEAR(saturation_vapour_density_kg_per_m3(40.0), 0.0512, 0.0008);
 }
 
-TEST(Environment, GabIsothermShape) {
+TEST(DryingEnvironment, GabIsothermShape) {
   const SorptionIsotherm iso;
   EXPECT_DOUBLE_EQ(equilibrium_moisture(iso, 0.0), 0.0);
   double previous = 0.0;
@@ -30,8 +30,8 @@ TEST(Environment, GabIsothermShape) {
   EXPECT_LT(equilibrium_moisture(iso, 0.3), 0.2);
 }
 
-TEST(Environment, MassTransferGrowsWithWindAndDryness) {
-  Environment env;
+TEST(DryingEnvironment, MassTransferGrowsWithWindAndDryness) {
+  DryingEnvironment env;
   const double still = (env.air_speed_m_per_s = 0.0, air_mass_transfer_m_per_s(env));
   const double breeze = (env.air_speed_m_per_s = 1.0, air_mass_transfer_m_per_s(env));
   const double wind = (env.air_speed_m_per_s = 5.0, air_mass_transfer_m_per_s(env));
@@ -52,10 +52,10 @@ TEST(Environment, MassTransferGrowsWithWindAndDryness) {
               air_mass_transfer_m_per_s(env) * saturation_vapour_density_kg_per_m3(env.air_temperature_c) * 0.7, 1e-15);
 }
 
-TEST(Environment, GroundSealsDownwardFacesOnly) {
+TEST(DryingEnvironment, GroundSealsDownwardFacesOnly) {
   const std::vector<Vec3> p{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}, {10, 0, 10}, {0, 10, 10}};
   const std::vector<Tri> faces{{0, 2, 1}, {3, 4, 5}, {0, 1, 4}};  // down at z=0, up at z=10, side
-  Environment env;
+  DryingEnvironment env;
   env.skin_cover = 0.8;
   std::vector<double> cover = face_cover(p, faces, env);
   EXPECT_EQ(cover, (std::vector<double>{0.8, 0.8, 0.8}));
@@ -67,12 +67,12 @@ TEST(Environment, GroundSealsDownwardFacesOnly) {
   EXPECT_EQ(cover, (std::vector<double>{0.8, 0.8, 0.8}));
 }
 
-TEST(Environment, ValidateRejectsPercentHumidity) {
-  Environment env;
+TEST(DryingEnvironment, ValidateRejectsPercentHumidity) {
+  DryingEnvironment env;
   EXPECT_NO_THROW(env.validate("test"));
   env.relative_humidity = 30.0;
   EXPECT_THROW(env.validate("test"), InputError);
-  env = Environment{};
+  env = DryingEnvironment{};
   env.air_speed_m_per_s = -1.0;
   EXPECT_THROW(env.validate("test"), InputError);
 }
