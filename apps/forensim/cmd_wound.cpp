@@ -46,6 +46,8 @@ struct WoundArgs {
   int picture_size = 320;
   int samples = 4;
   double texels_per_mm = 0.0;
+  double mesh_scale = 0.0;
+  std::string unit = "auto";
   std::uint64_t seed = 1;
   std::string out;
 };
@@ -130,7 +132,10 @@ int run_wound(const WoundArgs& a) {
   TriMesh mesh;
   std::string mesh_source = a.mesh;
   if (!a.mesh.empty()) {
-    mesh = import_mesh(a.mesh);
+    MeshImportOptions import_options;
+    import_options.unit = a.unit;
+    import_options.scale = a.mesh_scale;
+    mesh = import_mesh(a.mesh, import_options);
     if (!mesh.has_uvs()) {
       throw InputError(a.mesh, "mesh", "has no texture coordinates (UVs); a wound is painted into UV maps");
     }
@@ -248,8 +253,13 @@ int run_wound(const WoundArgs& a) {
     std::size_t best = 0;
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
       if ((mesh.positions[i] - centre).squaredNorm() < (mesh.positions[best] - centre).squaredNorm()) best = i;
-    const Vec3 normal = normals[best].normalized();
     const Vec3 surface = mesh.positions[best];
+    // Look from outside: scans may carry inward normals, so point the normal away from the mesh's centroid.
+    Vec3 centroid = Vec3::Zero();
+    for (const auto& p : mesh.positions) centroid += p;
+    centroid /= static_cast<double>(mesh.positions.size());
+    Vec3 normal = normals[best].normalized();
+    if (normal.dot(surface - centroid) < 0.0) normal = -normal;
     const double view = std::max(30.0, canvas->closing_distance_mm + 2.0 * std::min(job.canvas.reach_mm, 15.0)) * 1.3;
     const double distance = view / (2.0 * std::tan(15.0 * M_PI / 180.0));
     Vec3 up = std::abs(normal.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitY();
@@ -304,6 +314,10 @@ const RegisterCommand wound_command{
       auto a = std::make_shared<WoundArgs>();
       sub->add_option("-o,--out", a->out, "Output folder")->required();
       sub->add_option("--mesh", a->mesh, "Skin mesh with UVs (any format Assimp reads); default: built-in");
+      sub->add_option("--unit", a->unit, "Unit of the mesh file: auto, m, cm, mm or in");
+      sub->add_option("--mesh-scale", a->mesh_scale,
+                      "Millimetres per mesh unit (overrides --unit; for scans in arbitrary units)")
+          ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--builtin", a->builtin, "Built-in mesh without --mesh: forearm-uv or cylinder")
           ->check(CLI::IsMember({"forearm-uv", "cylinder"}));
       sub->add_option("--strokes", a->strokes, "Wound job JSON: strokes (3D or UV points), shape, distance, keys");
