@@ -52,10 +52,14 @@ double air_mass_transfer_m_per_s(const DryingEnvironment& env) {
   return sh * d_va / env.body_diameter_m;
 }
 
+double skin_vapour_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue) {
+  return 1.0 / (1.0 / air_mass_transfer_m_per_s(env) + 1.0 / tissue.skin_permeance_m_per_s);
+}
+
 double surface_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue) {
   const double x_e = equilibrium_moisture(env.isotherm, env.relative_humidity);
   const double drive = std::max(tissue.initial_moisture - x_e, 1e-6);
-  return air_mass_transfer_m_per_s(env) * saturation_vapour_density_kg_per_m3(env.air_temperature_c) *
+  return skin_vapour_transfer_m_per_s(env, tissue) * saturation_vapour_density_kg_per_m3(env.air_temperature_c) *
          (1.0 - env.relative_humidity) / (dry_solid_density_kg_per_m3(tissue) * drive);
 }
 

@@ -14,9 +14,11 @@
 ///   Re = v d / nu_air, Sc = nu_air / D_va, D_va = 2.5e-5 (T/298 K)^1.75 m^2/s (water vapour in air),
 ///   nu_air = 1.55e-5 (T/298 K)^1.75 m^2/s. Wind below 0.2 m/s is taken as 0.2 m/s (a body's own natural
 ///   convection).
+/// - The skin is a vapour barrier of permeance k_skin (TissueDrying::skin_permeance_m_per_s) in series with
+///   the air side: k = 1 / (1 / h_m + 1 / k_skin).
 /// - The Robin condition of the diffusion solver is written in moisture content, -D dX/dn = h (X - X_e). Its
-///   coefficient h is matched to the physical vapour flux h_m (rho_sat(T) - RH rho_sat(T)) of fully wet skin:
-///     h = h_m rho_sat(T) (1 - RH) / (rho_d0 (X0 - X_e)),
+///   coefficient h is matched to the vapour flux k (rho_sat(T) - RH rho_sat(T)) of fresh, fully wet tissue:
+///     h = k rho_sat(T) (1 - RH) / (rho_d0 (X0 - X_e)),
 ///   rho_sat from the Magnus formula (Alduchov and Eskridge 1996) and the ideal gas law, rho_d0 the dry-solid
 ///   density (material_laws.hpp). So a wet surface evaporates like free water and the flux falls to zero at X_e.
 
@@ -63,6 +65,9 @@ double equilibrium_moisture(const SorptionIsotherm& isotherm, double activity);
 
 /// Air-side mass-transfer coefficient h_m (m/s) of a cylinder of env.body_diameter_m in cross flow.
 double air_mass_transfer_m_per_s(const DryingEnvironment& env);
+
+/// Vapour transfer coefficient k (m/s) of the skin and the air in series, 1 / (1 / h_m + 1 / k_skin).
+double skin_vapour_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue);
 
 /// Robin coefficient h (m/s) of -D dX/dn = h (X - X_e) for `tissue` in `env` (see above).
 double surface_transfer_m_per_s(const DryingEnvironment& env, const TissueDrying& tissue);

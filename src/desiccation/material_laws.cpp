@@ -16,6 +16,7 @@ void TissueDrying::validate(const std::string& source) const {
   positive(water_density_kg_per_m3, "water_density_kg_per_m3");
   positive(reference_diffusivity_m2_per_s, "reference_diffusivity_m2_per_s");
   positive(minimum_diffusivity_m2_per_s, "minimum_diffusivity_m2_per_s");
+  positive(skin_permeance_m_per_s, "skin_permeance_m_per_s");
   require_input(std::isfinite(diffusivity_drying_exponent) && diffusivity_drying_exponent >= 0.0, source,
                 "diffusivity_drying_exponent", "must be a number >= 0");
   require_input(std::isfinite(shrinkage_efficiency) && shrinkage_efficiency >= 0.0 && shrinkage_efficiency <= 1.0,

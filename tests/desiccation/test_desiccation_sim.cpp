@@ -38,6 +38,7 @@ DesiccationSettings fast_settings() {
   DesiccationSettings s;
   s.tissue.reference_diffusivity_m2_per_s = 1e-9;  // a small block dries noticeably in a few hours
   s.elastic.quasi_static_tolerance_mm = 1e-4;      // keeps the quick suite quick
+  s.tissue.skin_permeance_m_per_s = 1.0;           // no skin barrier: dries within hours
   return s;
 }
 

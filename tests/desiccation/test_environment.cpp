@@ -45,11 +45,15 @@ TEST(DryingEnvironment, MassTransferGrowsWithWindAndDryness) {
   const double h_dry = (env.relative_humidity = 0.2, surface_transfer_m_per_s(env, tissue));
   const double h_humid = (env.relative_humidity = 0.8, surface_transfer_m_per_s(env, tissue));
   EXPECT_GT(h_dry, h_humid);
-  // Flux of fresh skin equals free-water evaporation: h rho_d0 (X0 - X_e) = h_m rho_sat (1 - RH).
+  // Flux of fresh skin: h rho_d0 (X0 - X_e) = k rho_sat (1 - RH), k the skin and air resistances in series.
+  const double k = skin_vapour_transfer_m_per_s(env, tissue);
+  EXPECT_LT(k, tissue.skin_permeance_m_per_s);
+  EXPECT_LT(k, air_mass_transfer_m_per_s(env));
+  EXPECT_NEAR(1.0 / k, 1.0 / tissue.skin_permeance_m_per_s + 1.0 / air_mass_transfer_m_per_s(env), 1e-9 / k);
   env.relative_humidity = 0.3;
   const double x_e = equilibrium_moisture(env.isotherm, 0.3);
   EXPECT_NEAR(surface_transfer_m_per_s(env, tissue) * dry_solid_density_kg_per_m3(tissue) * (3.0 - x_e),
-              air_mass_transfer_m_per_s(env) * saturation_vapour_density_kg_per_m3(env.air_temperature_c) * 0.7, 1e-15);
+              k * saturation_vapour_density_kg_per_m3(env.air_temperature_c) * 0.7, 1e-15);
 }
 
 TEST(DryingEnvironment, GroundSealsDownwardFacesOnly) {
