@@ -173,7 +173,7 @@ DesiccationSolver::~DesiccationSolver() = default;
 DesiccationSolver::DesiccationSolver(DesiccationSolver&&) noexcept = default;
 DesiccationSolver& DesiccationSolver::operator=(DesiccationSolver&&) noexcept = default;
 
-DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt_s) {
+DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt_s, bool deform) {
   Impl& s = *m_impl;
   const DesiccationModel& model = *s.model;
   check_state(model, state);
@@ -203,7 +203,7 @@ DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt
   report.seconds_diffusion = seconds_since(start);
 
   // Shrinkage strain per tet from its new moisture (eq. 28; strain zero at X0, see shrinkage_strain).
-  if (s.elastic) {
+  if (s.elastic && deform) {
     start = std::chrono::steady_clock::now();
     const std::vector<double> x_new = tet_moisture(model, state);
     for (std::size_t t = 0; t < mesh.tet_count(); ++t)

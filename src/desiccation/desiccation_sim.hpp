@@ -35,8 +35,8 @@ struct DesiccationSettings {
   bool deform = true;        ///< solve the volume deformation (false: moisture only)
   bool quasi_static = true;  ///< quasi-static deformation per step (long steps); false: one dynamic step
   DiffusionSettings diffusion;
-  /// Quasi-static solves stop when no node moves more than 1e-5 mm (far below what a render shows).
-  CorotationalSettings elastic{0.0, 0.0, RigidMode::fixed, 1e3, 20, 1e-5};
+  /// Quasi-static solves stop when no node moves more than 1e-3 mm (far below what a render shows).
+  CorotationalSettings elastic{0.0, 0.0, RigidMode::fixed, 1e3, 20, 1e-3};
   /// Checks every part; throws InputError naming `source`.
   void validate(const std::string& source) const;
 };
@@ -108,9 +108,11 @@ class DesiccationSolver {
   DesiccationSolver& operator=(DesiccationSolver&&) noexcept;
 
   /// One step of dt_s seconds: moisture (implicit Euler with D and capacity from the current moisture and
-  /// shape), then each tet's shrinkage strain from its new moisture, then the deformation. Throws
-  /// InputError for a state of the wrong size, NumericError if the solvers fail.
-  DesiccationStepReport step(DesiccationState& state, double dt_s);
+  /// shape), then each tet's shrinkage strain from its new moisture, then the deformation. With `deform`
+  /// false the shape stays as it is (quasi-static shapes depend only on the current moisture, so a caller
+  /// may solve them every few steps and at output frames: the deformation costs far more than the moisture
+  /// step). Throws InputError for a state of the wrong size, NumericError if the solvers fail.
+  DesiccationStepReport step(DesiccationState& state, double dt_s, bool deform = true);
 
  private:
   struct Impl;

@@ -19,7 +19,7 @@
 ///   D0 at the initial moisture, falling steeply as the tissue dries (case hardening), b = 1 gives eq. 8's
 ///   shape. Effective moisture diffusivities of meat and fish during air drying are 1e-11..1e-9 m^2/s
 ///   (Trujillo, Wiangkaew and Pham 2007, beef: about 1e-10 m^2/s at 20-30 C; Mayor and Sereno 2004).
-///   D0 = 4e-10 m^2/s. The skin is a barrier (skin_permeance_m_per_s): without it a wet surface would
+///   D0 = 1e-10 m^2/s. The skin is a barrier (skin_permeance_m_per_s): without it a wet surface would
 ///   evaporate like free water (about 25 kg/m^2/day in the default environment) and a forearm would lose
 ///   half its water in a day. With it the arm phantom in the hot, dry default environment loses about 30 %
 ///   of its mass in 60 days (Papageorgopoulou et al. 2015; tests/desiccation/slow_arm_drying.cpp).
@@ -34,13 +34,13 @@ struct TissueDrying {
   double initial_density_kg_per_m3 = 1060.0;      ///< rho0, bulk density of fresh soft tissue (eq. 28)
   double water_density_kg_per_m3 = 1000.0;        ///< rho_w (eq. 28)
   double shrinkage_efficiency = 1.0;              ///< beta, fraction of the ideal shrinkage (1 = eq. 28)
-  double reference_diffusivity_m2_per_s = 4e-10;  ///< D0 (w_0), diffusivity at X0 (eq. 8)
+  double reference_diffusivity_m2_per_s = 1e-10;  ///< D0 (w_0), diffusivity at X0 (eq. 8)
   double diffusivity_drying_exponent = 1.0;       ///< b in D0 exp(-b (X0 / X - 1))
   double minimum_diffusivity_m2_per_s = 1e-13;    ///< D_min, floor for bone-dry tissue
   /// k_skin, water-vapour permeance of the (dead) skin, m/s: flux = k_skin (rho_sat - rho_air) in series with
-  /// the air side (environment.hpp). 6e-5 m/s gives 5 g/m^2/h at 35 C, 30 % RH, the order of the
+  /// the air side (environment.hpp). 5e-5 m/s gives 5 g/m^2/h at 35 C, 30 % RH, the order of the
   /// transepidermal water loss of skin (1-10 g/m^2/h); calibrated with D0 to Papageorgopoulou et al. 2015.
-  double skin_permeance_m_per_s = 6e-5;
+  double skin_permeance_m_per_s = 5e-5;
   /// Checks ranges (positive densities and moisture, efficiency in [0, 1], S_v(0) > 0). Throws InputError
   /// naming `source`.
   void validate(const std::string& source) const;

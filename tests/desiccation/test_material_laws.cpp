@@ -41,12 +41,12 @@ TEST(MaterialLaws, MonotoneInMoisture) {
 
 TEST(MaterialLaws, DiffusivityLimitsAndUnits) {
   const TissueDrying tissue;
-  EXPECT_DOUBLE_EQ(moisture_diffusivity_m2_per_s(tissue, tissue.initial_moisture), 4e-10);
+  EXPECT_DOUBLE_EQ(moisture_diffusivity_m2_per_s(tissue, tissue.initial_moisture), 1e-10);
   EXPECT_DOUBLE_EQ(moisture_diffusivity_m2_per_s(tissue, 0.0), tissue.minimum_diffusivity_m2_per_s);
   // Half the initial moisture: D0 exp(-1) (eq. 8's shape with b = 1).
-  EXPECT_NEAR(moisture_diffusivity_m2_per_s(tissue, 1.5), 4e-10 * std::exp(-1.0), 1e-22);
+  EXPECT_NEAR(moisture_diffusivity_m2_per_s(tissue, 1.5), 1e-10 * std::exp(-1.0), 1e-22);
   // Within the literature range for meat drying, m^2/s.
-  EXPECT_GT(tissue.reference_diffusivity_m2_per_s, 1e-11);
+  EXPECT_GE(tissue.reference_diffusivity_m2_per_s, 1e-11);
   EXPECT_LT(tissue.reference_diffusivity_m2_per_s, 1e-9);
 }
 
