@@ -38,9 +38,9 @@ struct TissueDrying {
   double diffusivity_drying_exponent = 1.0;       ///< b in D0 exp(-b (X0 / X - 1))
   double minimum_diffusivity_m2_per_s = 1e-13;    ///< D_min, floor for bone-dry tissue
   /// k_skin, water-vapour permeance of the (dead) skin, m/s: flux = k_skin (rho_sat - rho_air) in series with
-  /// the air side (environment.hpp). 5e-5 m/s gives 5 g/m^2/h at 35 C, 30 % RH, the order of the
+  /// the air side (environment.hpp). 4e-5 m/s gives 4 g/m^2/h at 35 C, 30 % RH, the order of the
   /// transepidermal water loss of skin (1-10 g/m^2/h); calibrated with D0 to Papageorgopoulou et al. 2015.
-  double skin_permeance_m_per_s = 5e-5;
+  double skin_permeance_m_per_s = 4e-5;
   /// Checks ranges (positive densities and moisture, efficiency in [0, 1], S_v(0) > 0). Throws InputError
   /// naming `source`.
   void validate(const std::string& source) const;
