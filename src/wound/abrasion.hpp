@@ -25,6 +25,11 @@ struct AbrasionParams {
   double scab_height_mm = 0.8;    ///< scab thickness at height noise 1 (the thesis's displacement scale is unstated)
   float skin_reflection = 0.25f;  ///< reflection of healthy skin (the thesis uses a specularity texture)
   double shrink_min = 0.4, shrink_max = 0.8;  ///< eq. 4.8's rand(0.4, 0.8)
+  /// Maturation's maxOuterGradBorder: true = the thesis's half closing distance (half the diameter, right for
+  /// the round convex wounds it draws); false = the deepest distance from the border inside the wound, the
+  /// distance a wound of any shape must close (equal to half the diameter for a disk; much smaller for a long
+  /// scrape, which the thesis's rule would leave nearly skin-coloured from the start).
+  bool thesis_closing_distance = false;
 
   /// Thesis texels -> mm on the skin.
   double px_to_mm(double px) const { return px / thesis_texels_per_mm; }
@@ -48,7 +53,7 @@ class VasoconstrictionKey : public KeyPosition {
  public:
   explicit VasoconstrictionKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "vasoconstriction"; }
-  MapSet render(const WoundCanvas& canvas, double local_position) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -61,7 +66,7 @@ class VasodilationKey : public KeyPosition {
  public:
   explicit VasodilationKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "vasodilation"; }
-  MapSet render(const WoundCanvas& canvas, double local_position) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -73,7 +78,7 @@ class ScabFormingKey : public KeyPosition {
  public:
   explicit ScabFormingKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "scab_forming"; }
-  MapSet render(const WoundCanvas& canvas, double local_position) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -86,21 +91,22 @@ class ScabKey : public KeyPosition {
  public:
   explicit ScabKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "scab"; }
-  MapSet render(const WoundCanvas& canvas, double local_position) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
 
  private:
   AbrasionParams m_params;
 };
 
-/// Chapter 4.3.5: re-rendered at every position p: closing distance c (Algorithm 4.3), eq. 4.8 borders
-/// outer = c/2 p, inner = outer + c/2 rand(0.4, 0.8) (seeded), Algorithm 4.4 inside the shape with the
+/// Chapter 4.3.5: re-rendered at every position p: closing distance c (Algorithm 4.3, or the deepest inside
+/// distance, see AbrasionParams::thesis_closing_distance), eq. 4.8 borders outer = c/2 p, inner = outer + c/2
+/// rand(0.4, 0.8) (seeded), Algorithm 4.4 inside the shape with the
 /// distance to the border: skin up to outer, Lerp(skin, WOUND_RED) up to inner, then Lerp(WOUND_RED,
 /// WOUND_WHITE) towards the centre. The wound area falls to zero at p = 1.
 class MaturationKey : public KeyPosition {
  public:
   explicit MaturationKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "maturation"; }
-  MapSet render(const WoundCanvas& canvas, double local_position) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
   bool rerenders() const override { return true; }
   /// Eq. 4.8's borders (mm) for the canvas at position p: {outer, inner}.
   std::pair<double, double> borders_mm(const WoundCanvas& canvas, double position) const;

@@ -19,8 +19,8 @@ BruiseStage bruise_stage(const std::string& name) {
   throw InputError("bruise", "stage '" + name + "'", "unknown stage (fresh, blue, green, yellow, faded)");
 }
 
-MapSet BruiseKey::render(const WoundCanvas& c, double) const {
-  MapSet m = make_map_set(c.width(), c.height(), Vec4f(0, 0, 0, 1), 0.25f);
+void BruiseKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
+  prepare_map_set(m, c.width(), c.height(), 0.25f);
   ValueNoiseParams np;
   np.octaves = 4;
   np.persistence = 0.6;
@@ -48,7 +48,6 @@ MapSet BruiseKey::render(const WoundCanvas& c, double) const {
         }
       },
       8);
-  return m;
 }
 
 nlohmann::json BruiseKey::describe() const {

@@ -48,14 +48,16 @@ std::vector<double> parse_durations(const std::string& list, const std::string& 
   return out;
 }
 
-std::string format_duration(double seconds) {
+std::string format_injury_time(double seconds) {
   struct Unit {
     double s;
     const char* name;
   };
   const Unit units[] = {{7.0 * 86400.0, "w"}, {86400.0, "d"}, {3600.0, "h"}, {60.0, "min"}, {1.0, "s"}};
   for (const auto& u : units) {
-    if (seconds >= u.s || u.s == 1.0) {
+    // Weeks only from two weeks on: "10d" reads better than "1.43w".
+    const double from = u.s == 7.0 * 86400.0 ? 2.0 * u.s : u.s;
+    if (seconds >= from || u.s == 1.0) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%g%s", std::round(seconds / u.s * 100.0) / 100.0, u.name);
       return buf;

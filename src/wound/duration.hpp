@@ -16,6 +16,6 @@ double parse_duration(const std::string& text, const std::string& source = "dura
 std::vector<double> parse_durations(const std::string& list, const std::string& source = "durations");
 
 /// Short human form of seconds in the largest unit that gives a number >= 1 ("36h", "2.5d", "10min").
-std::string format_duration(double seconds);
+std::string format_injury_time(double seconds);
 
 }  // namespace forensim

@@ -18,10 +18,17 @@ class KeyPosition {
   virtual ~KeyPosition() = default;
   /// Phase name ("scab"), as written in job files.
   virtual std::string name() const = 0;
-  /// Renders the maps of this key position over canvas.region (maps of the region's size).
+  /// Renders the maps of this key position over canvas.region into `out` (maps of the region's size; reused
+  /// when `out` already has that size, as a GPU reuses its render targets, else allocated).
   /// `local_position` in [0, 1] is the position inside the phase; only keys that re-render use it
   /// (the thesis's maturation, chapter 4.3.5). Deterministic for the canvas's seed at any thread count.
-  virtual MapSet render(const WoundCanvas& canvas, double local_position) const = 0;
+  virtual void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const = 0;
+  /// render_into a new map set.
+  MapSet render(const WoundCanvas& canvas, double local_position) const {
+    MapSet out;
+    render_into(canvas, local_position, out);
+    return out;
+  }
   /// True when the key re-renders at every position between two of its entries instead of being blended.
   virtual bool rerenders() const { return false; }
   /// The key's parameters, for the timeline's JSON description.

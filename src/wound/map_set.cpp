@@ -19,6 +19,25 @@ MapSet make_map_set(int width, int height, const Vec4f& color, float reflection)
   return set;
 }
 
+void prepare_map_set(MapSet& set, int width, int height, float reflection) {
+  if (set.color.width() != width || set.color.height() != height || set.color.channels() != 4 ||
+      set.reflection.width() != width || set.reflection.height() != height || set.reflection.channels() != 1 ||
+      set.height_mm.width() != width || set.height_mm.height() != height || set.height_mm.channels() != 1) {
+    set = make_map_set(width, height, Vec4f(0, 0, 0, 1), reflection);
+    return;
+  }
+  set.color.set_encoding(PixelEncoding::linear);
+  float* r = set.reflection.data().data();
+  float* h = set.height_mm.data().data();
+  parallel_for_chunks(
+      0, set.reflection.data().size(),
+      [&](std::size_t begin, std::size_t end) {
+        std::fill(r + begin, r + end, reflection);
+        std::fill(h + begin, h + end, 0.0f);
+      },
+      1 << 16);
+}
+
 void check_map_set(const MapSet& set, const std::string& what) {
   const int w = set.color.width();
   const int h = set.color.height();

@@ -32,6 +32,11 @@ struct MapSet {
 /// A set of width x height maps: colour `color`, reflection `reflection`, height 0.
 MapSet make_map_set(int width, int height, const Vec4f& color = Vec4f(0, 0, 0, 1), float reflection = 0.0f);
 
+/// Makes `set` width x height maps for rendering into: reuses its buffers when it already has that size
+/// (no allocation), fills reflection with `reflection` and height with 0; the colour is left as it was (the
+/// caller writes every texel).
+void prepare_map_set(MapSet& set, int width, int height, float reflection);
+
 /// Throws InputError unless the three maps of `set` have the same size and the expected channel counts
 /// (4, 1, 1). `what` names the set in the message.
 void check_map_set(const MapSet& set, const std::string& what);

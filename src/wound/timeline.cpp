@@ -80,7 +80,7 @@ void Timeline::sample(double t, MapSet& out) const {
   const MapSet& ma = entry_maps(i);
   const MapSet& mb = entry_maps(i + 1);
   if (a.key == b.key && a.key->rerenders() && a.local_position != b.local_position && w > 0.0 && w < 1.0) {
-    out = a.key->render(*m_canvas, a.local_position + (b.local_position - a.local_position) * w);
+    a.key->render_into(*m_canvas, a.local_position + (b.local_position - a.local_position) * w, out);
     return;
   }
   if (out.width() != ma.width() || out.height() != ma.height() || out.color.channels() != 4) {
@@ -150,7 +150,7 @@ nlohmann::json Timeline::describe() const {
     const auto& e = m_entries[i];
     nlohmann::json x;
     x["time_s"] = e.time_s;
-    x["time"] = format_duration(e.time_s);
+    x["time"] = format_injury_time(e.time_s);
     x["phase"] = e.key->name();
     x["label"] = e.label;
     x["local_position"] = e.local_position;

@@ -115,6 +115,21 @@ double diameter_of(const std::vector<Vec3>& points) {
 
 }  // namespace
 
+TexelRect shape_bounds(const Image& shape) {
+  TexelRect r{shape.width(), shape.height(), 0, 0};
+  for (int y = 0; y < shape.height(); ++y) {
+    for (int x = 0; x < shape.width(); ++x) {
+      if (shape.at(x, y) < 0.5f) continue;
+      r.x0 = std::min(r.x0, x);
+      r.y0 = std::min(r.y0, y);
+      r.x1 = std::max(r.x1, x + 1);
+      r.y1 = std::max(r.y1, y + 1);
+    }
+  }
+  if (r.empty()) return TexelRect{};
+  return r;
+}
+
 double mesh_texels_per_mm(const TriMesh& mesh, int width, int height) {
   if (!mesh.has_uvs()) throw InputError("wound mesh", "uvs", "the mesh has no texture coordinates (UVs)");
   double uv_area = 0.0, area = 0.0;
@@ -343,6 +358,7 @@ WoundCanvas make_wound_canvas(const TriMesh& mesh, const UvRaster& raster, const
     for (float& v : c.shape.data()) v = v >= 0.5f ? 1.0f : 0.0f;
     c.closing_distance_mm = diameter_of(border);
   }
+  c.wound_box = shape_bounds(c.shape);
   c.upper_skin = crop_rgba(upper_skin, c.region);
   c.lower_skin = crop_rgba(lower_skin, c.region);
   return c;

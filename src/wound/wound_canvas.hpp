@@ -58,11 +58,15 @@ struct WoundCanvas {
   Image inside_mm;   ///< 1 channel: inside texels' distance to the border (mm), 0 outside
   double closing_distance_mm = 0.0;  ///< Algorithm 4.3: the wound's diameter (mm)
   std::size_t wound_texels = 0;      ///< texels inside the shape
+  TexelRect wound_box;               ///< bounding box of the shape's texels (region coordinates)
   DistanceMode distance = DistanceMode::surface;
 
   int width() const { return region.width(); }
   int height() const { return region.height(); }
 };
+
+/// Bounding box of the texels with channel 0 >= 0.5 (empty when there are none).
+TexelRect shape_bounds(const Image& shape);
 
 /// Mean texture density of a mesh with UVs at a width x height texture: sqrt(UV area in texels^2 / surface
 /// area in mm^2). Throws InputError when the mesh has no UVs or zero area.

@@ -43,6 +43,7 @@ WoundJob read_wound_job(const JobNode& root, const TriMesh& mesh, const std::opt
   job.abrasion.scab_gradient_px = ab.get_number("scab_gradient_px", 100.0, 1.0, 10000.0);
   job.abrasion.scab_height_mm = ab.get_number("scab_height_mm", 0.8, 0.0, 20.0);
   job.abrasion.skin_reflection = static_cast<float>(ab.get_number("skin_reflection", 0.25, 0.0, 1.0));
+  job.abrasion.thesis_closing_distance = ab.get<bool>("thesis_closing_distance", false);
 
   const auto strokes = root.children("strokes");
   if (strokes.empty()) root.fail("strokes", "at least one stroke is needed");

@@ -12,7 +12,7 @@
 ///       {"uv": [[u, v], ...], "radius_mm": 2}            // or UV points (u right, v up)
 ///     ],
 ///     "abrasion": {"thesis_texels_per_mm": 8, "scab_height_mm": 0.8, "skin_reflection": 0.25,
-///                  "glow_thickness_px": 100, "scab_gradient_px": 100},
+///                  "glow_thickness_px": 100, "scab_gradient_px": 100, "thesis_closing_distance": false},
 ///     "keys": [ {"phase": "vasoconstriction", "time": "0s", "label": "...", "position": 0}, ... ]
 ///   }
 ///

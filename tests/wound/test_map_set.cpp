@@ -68,5 +68,5 @@ TEST(Duration, ParsesRealUnits) {
   const auto list = parse_durations("1h,36h,5d");
   ASSERT_EQ(list.size(), 3u);
   EXPECT_DOUBLE_EQ(list[2], 5 * 86400.0);
-  EXPECT_EQ(format_duration(36 * 3600.0), "1.5d");
+  EXPECT_EQ(format_injury_time(36 * 3600.0), "1.5d");
 }

@@ -1,0 +1,397 @@
+// forensim mummify: the volume part of the desiccation simulation (Frerichs, Vidler and Gatzidis 2020,
+// sections 6 and 7): moisture evaporating through the skin and diffusing in the flesh of a body model, and
+// the shrinkage of the volume it causes. Writes a .pvd/.vtu series, CSV curves, plots and renders into a run
+// folder; checkpoints at every frame so an interrupted run continues with --resume.
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "body/body_model_io.hpp"
+#include "body/phantom_model.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "core/error.hpp"
+#include "core/job.hpp"
+#include "core/progress.hpp"
+#include "core/run_folder.hpp"
+#include "core/timer.hpp"
+#include "desiccation/curve_plot.hpp"
+#include "desiccation/desiccation_pictures.hpp"
+#include "desiccation/desiccation_sim.hpp"
+#include "image/png_io.hpp"
+#include "render/sheet.hpp"
+#include "tet_io/pvd_writer.hpp"
+#include "tet_io/vtu_writer.hpp"
+
+namespace forensim::cli {
+namespace {
+
+struct MummifyArgs {
+  std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
+  double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
+  int frames = 6, picture_size = 480;
+  bool resume = false, no_pictures = false;
+  CLI::App* sub = nullptr;
+  bool given(const std::string& option) const { return sub->get_option(option)->count() > 0; }
+};
+
+/// A run's description: the job file (or defaults), with command-line options taking precedence.
+struct MummifyJob {
+  std::string phantom, size, model;
+  double days = 0.0, step_hours = 0.0;
+  int frames = 0;
+  long long deform_every = 4;  ///< quasi-static shape solved every this many steps (and at frames)
+  DesiccationSettings settings;
+};
+
+MummifyJob load_job(const MummifyArgs& a, JobDocument& doc) {
+  JobNode root = doc.root();
+  MummifyJob job;
+  root.get_integer("version", 1, 1, 1);
+  JobNode body = root.child("body");
+  job.phantom = a.given("--phantom") ? a.phantom : body.get_choice("phantom", a.phantom, {"arm", "head"});
+  job.size = a.given("--size") ? a.size : body.get_choice("size", a.size, {"small", "paper", "fine"});
+  job.model = a.given("--model") ? a.model : body.get<std::string>("model", a.model);
+  job.days = a.given("--days") ? a.days : root.get_number("days", a.days, 0.01, 3650.0);
+  job.frames = a.given("--frames") ? a.frames : static_cast<int>(root.get_integer("frames", a.frames, 1, 1000));
+  job.step_hours = a.given("--step-hours") ? a.step_hours : root.get_number("step_hours", a.step_hours, 0.01, 240.0);
+  JobNode env = root.child("environment");
+  DryingEnvironment& e = job.settings.environment;
+  e.air_temperature_c =
+      a.given("--temperature") ? a.temperature : env.get_number("temperature_c", a.temperature, -40, 80);
+  e.relative_humidity =
+      0.01 * (a.given("--humidity") ? a.humidity : env.get_number("humidity_percent", a.humidity, 0.0, 99.0));
+  e.air_speed_m_per_s = a.given("--wind") ? a.wind : env.get_number("wind_m_per_s", a.wind, 0.0, 50.0);
+  e.body_diameter_m = env.get_number("body_diameter_m", e.body_diameter_m, 0.005, 2.0);
+  e.skin_cover = env.get_number("skin_cover", e.skin_cover, 0.0, 1.0);
+  e.on_ground = env.get<bool>("on_ground", e.on_ground);
+  e.ground_height_mm = env.get_number("ground_height_mm", e.ground_height_mm, -1e5, 1e5);
+  JobNode tissue = root.child("tissue");
+  TissueDrying& t = job.settings.tissue;
+  t.initial_moisture = dry_basis_moisture(
+      0.01 * tissue.get_number("initial_water_percent", 100.0 * wet_basis_moisture(t.initial_moisture), 1.0, 95.0));
+  t.reference_diffusivity_m2_per_s =
+      tissue.get_number("diffusivity_m2_per_s", t.reference_diffusivity_m2_per_s, 1e-13, 1e-7);
+  t.diffusivity_drying_exponent =
+      tissue.get_number("diffusivity_drying_exponent", t.diffusivity_drying_exponent, 0.0, 20.0);
+  t.shrinkage_efficiency = tissue.get_number("shrinkage_efficiency", t.shrinkage_efficiency, 0.0, 1.0);
+  t.skin_permeance_m_per_s = tissue.get_number("skin_permeance_m_per_s", t.skin_permeance_m_per_s, 1e-9, 10.0);
+  job.settings.deform = root.get<bool>("deform", true);
+  job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
+  doc.check_all_used();
+  return job;
+}
+
+/// One row of the curves: day, totals, per-part water/mass/volume.
+struct CurveRow {
+  double day = 0.0;
+  DesiccationTotals totals;
+};
+
+std::string csv_header(const std::vector<std::string>& parts) {
+  std::string h = "day,water_kg,total_kg,volume_cm3,water_percent,mass_percent,volume_percent";
+  for (const std::string& p : parts) h += "," + p + "_water_percent," + p + "_mass_kg," + p + "_volume_cm3";
+  return h + "\n";
+}
+
+std::string csv_text(const std::vector<CurveRow>& rows, const std::vector<std::string>& parts) {
+  std::ostringstream out;
+  out << csv_header(parts);
+  out.precision(10);
+  const DesiccationTotals& t0 = rows.front().totals;
+  for (const CurveRow& r : rows) {
+    const DesiccationTotals& t = r.totals;
+    out << r.day << ',' << t.water_kg << ',' << t.total_kg << ',' << t.volume_mm3 / 1000.0 << ','
+        << 100.0 * t.water_kg / t0.water_kg << ',' << 100.0 * t.total_kg / t0.total_kg << ','
+        << 100.0 * t.volume_mm3 / t0.volume_mm3;
+    for (std::size_t p = 0; p < t.part_water_kg.size(); ++p) {
+      const double w0 = t0.part_water_kg[p];
+      out << ',' << (w0 > 0.0 ? 100.0 * t.part_water_kg[p] / w0 : 0.0) << ',' << t.part_total_kg[p] << ','
+          << t.part_volume_mm3[p] / 1000.0;
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+void write_frame(RunFolder& run, PvdSeries& series, const DesiccationModel& model, const DesiccationState& state,
+                 int frame) {
+  TetMesh mesh = model.body.volume;
+  const std::size_t n = mesh.vertex_count();
+  std::vector<Vec3> displacement(n);
+  for (std::size_t i = 0; i < n; ++i) displacement[i] = state.positions[i] - mesh.positions[i];
+  mesh.positions = state.positions;
+  mesh.vertex_fields.scalars["moisture"] = state.node_moisture;
+  std::vector<double> water_percent(n);
+  for (std::size_t i = 0; i < n; ++i) water_percent[i] = 100.0 * wet_basis_moisture(state.node_moisture[i]);
+  mesh.vertex_fields.scalars["water_percent"] = water_percent;
+  mesh.vertex_fields.vectors["displacement"] = displacement;
+  mesh.tet_fields.scalars["target_shrinkage_ratio"] = tet_volume_ratio(model, state);
+  std::vector<double> ratio(mesh.tet_count());
+  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& k = mesh.tets[t];
+    const Vec3 &a = mesh.positions[static_cast<std::size_t>(k[0])], &b = mesh.positions[static_cast<std::size_t>(k[1])],
+               &c = mesh.positions[static_cast<std::size_t>(k[2])], &d = mesh.positions[static_cast<std::size_t>(k[3])];
+    ratio[t] = (b - a).dot((c - a).cross(d - a)) / 6.0 / model.tet_rest_volume_mm3[t];
+  }
+  mesh.tet_fields.scalars["shrinkage_ratio"] = ratio;
+  if (!model.body.tet_parts.empty()) {
+    std::vector<double> part(model.body.tet_parts.begin(), model.body.tet_parts.end());
+    mesh.tet_fields.scalars["part"] = part;
+  }
+  char name[64];
+  std::snprintf(name, sizeof name, "volume/frame_%04d.vtu", frame);
+  VtuOptions options;
+  options.compress = true;
+  options.field_precision = VtuPrecision::float32;
+  write_vtu(run.file(name), mesh, options);
+  run.add_output(name);
+  series.add(state.time_s / 86400.0, name);
+}
+
+void write_plots(RunFolder& run, const std::vector<CurveRow>& rows, const std::vector<std::string>& parts) {
+  const DesiccationTotals& t0 = rows.front().totals;
+  CurveSeries mass{"total mass", {}, {}}, water{"water", {}, {}}, volume{"volume", {}, {}};
+  std::vector<CurveSeries> part_series;
+  for (const std::string& p : parts) part_series.push_back({p, {}, {}});
+  for (const CurveRow& r : rows) {
+    for (CurveSeries* s : {&mass, &water, &volume}) s->x.push_back(r.day);
+    mass.y.push_back(100.0 * r.totals.total_kg / t0.total_kg);
+    water.y.push_back(100.0 * r.totals.water_kg / t0.water_kg);
+    volume.y.push_back(100.0 * r.totals.volume_mm3 / t0.volume_mm3);
+    for (std::size_t p = 0; p < part_series.size() && p < r.totals.part_water_kg.size(); ++p) {
+      part_series[p].x.push_back(r.day);
+      part_series[p].y.push_back(t0.part_water_kg[p] > 0 ? 100.0 * r.totals.part_water_kg[p] / t0.part_water_kg[p]
+                                                         : 0.0);
+    }
+  }
+  CurvePlotStyle style;
+  style.title = "Mass, water and volume";
+  style.x_label = "days";
+  style.y_label = "% of initial";
+  style.y_min = 0.0;
+  style.y_max = 100.0;
+  write_png(run.file("curves.png"),
+            plot_curves({mass, water, volume}, style,
+                        {{60.0, 70.0, "Papageorgopoulou et al. 2015: ~30 % mass lost in 2 months"}}));
+  run.add_output("curves.png");
+  if (!part_series.empty()) {
+    style.title = "Water per part";
+    write_png(run.file("curves_parts.png"), plot_curves(part_series, style));
+    run.add_output("curves_parts.png");
+  }
+}
+
+std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const DesiccationModel& model, double up_to_day) {
+  // Only the totals needed for the CSV and the plots are restored; percentages are recomputed from row 0.
+  std::vector<CurveRow> rows;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  const std::size_t parts = model.body.part_names.size();
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
+    if (v.size() != 7 + 3 * parts)
+      throw InputError(csv.string(), "line " + std::to_string(rows.size() + 2), "unexpected number of columns");
+    if (v[0] > up_to_day + 1e-9) break;
+    CurveRow r;
+    r.day = v[0];
+    r.totals.water_kg = v[1];
+    r.totals.total_kg = v[2];
+    r.totals.volume_mm3 = v[3] * 1000.0;
+    for (std::size_t p = 0; p < parts; ++p) {
+      r.totals.part_total_kg.push_back(v[8 + 3 * p]);
+      r.totals.part_volume_mm3.push_back(v[9 + 3 * p] * 1000.0);
+      r.totals.part_water_kg.push_back(0.0);
+    }
+    rows.push_back(r);
+  }
+  // Part water is stored as a percentage; convert back against the initial water of each part.
+  const DesiccationTotals start = desiccation_totals(model, initial_desiccation_state(model));
+  std::ifstream again(csv);
+  std::getline(again, line);
+  for (CurveRow& r : rows) {
+    std::getline(again, line);
+    std::vector<double> v;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
+    for (std::size_t p = 0; p < parts; ++p) r.totals.part_water_kg[p] = v[7 + 3 * p] / 100.0 * start.part_water_kg[p];
+  }
+  return rows;
+}
+
+int run_mummify(const MummifyArgs& a) {
+  Stopwatch watch;
+  JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
+  const MummifyJob job = load_job(a, doc);
+  RunFolder run(a.out, "mummify");
+  run.set_job(doc.resolved());
+
+  BodyModel body;
+  std::string kind = job.phantom;
+  if (!job.model.empty()) {
+    body = read_body_model(job.model);
+    std::printf("body model %s: %zu nodes, %zu tets\n", job.model.c_str(), body.volume.vertex_count(),
+                body.volume.tet_count());
+  } else {
+    body = make_phantom_model(phantom_model_size(job.phantom, job.size));
+    std::printf("%s phantom, size %s: %zu nodes, %zu tets (%s)\n", job.phantom.c_str(), job.size.c_str(),
+                body.volume.vertex_count(), body.volume.tet_count(), format_seconds(watch.seconds()).c_str());
+  }
+  run.timings().add("body model", watch.seconds());
+  const DesiccationModel model = make_desiccation_model(std::move(body), job.settings);
+  const DryingEnvironment& env = job.settings.environment;
+  std::printf("environment: %.1f C, %.0f %% RH, wind %.1f m/s -> X_e %.3f kg/kg, h %.3g m/s (air side %.3g m/s)\n",
+              env.air_temperature_c, 100.0 * env.relative_humidity, env.air_speed_m_per_s, model.equilibrium_moisture,
+              model.transfer_m_per_s, air_mass_transfer_m_per_s(env));
+
+  const double dt = job.step_hours * 3600.0;
+  const long long total_steps = std::max<long long>(1, std::llround(job.days * 24.0 / job.step_hours));
+  auto frame_of_step = [&](long long step) {  // frame index whose output falls on `step`, or -1
+    for (int f = 0; f <= job.frames; ++f)
+      if (std::llround(static_cast<double>(total_steps) * f / job.frames) == step) return f;
+    return -1;
+  };
+
+  const auto checkpoint = run.file("checkpoint.bin");
+  DesiccationState state = initial_desiccation_state(model);
+  std::vector<CurveRow> rows;
+  std::vector<PvdEntry> entries;
+  if (a.resume && std::filesystem::exists(checkpoint)) {
+    state = read_desiccation_checkpoint(checkpoint, model.body.volume.vertex_count());
+    rows = read_rows(run.file("curves.csv"), model, state.time_s / 86400.0);
+    for (const PvdEntry& e : read_pvd(run.file("desiccation.pvd")))
+      if (e.time <= state.time_s / 86400.0 + 1e-9) entries.push_back(e);
+    std::printf("resuming at day %.2f (step %lld of %lld)\n", state.time_s / 86400.0, state.step_count, total_steps);
+  }
+  PvdSeries series(run.file("desiccation.pvd"), entries);
+  run.add_output("desiccation.pvd");
+  if (rows.empty()) rows.push_back({0.0, desiccation_totals(model, state)});
+  if (state.step_count == 0) write_frame(run, series, model, state, 0);
+
+  DesiccationSolver solver(model);
+  Progress progress("drying", static_cast<std::size_t>(total_steps));
+  progress.set_done(static_cast<std::size_t>(state.step_count));
+  double seconds_diffusion = 0.0, seconds_deformation = 0.0;
+  std::size_t worst_inverted = 0;
+  long long deformation_iterations = 0, deformations = 0, moisture_steps = 0;
+  install_interrupt_handler();
+  while (state.step_count < total_steps) {
+    // The quasi-static shape follows the moisture: solved every `deform_every` steps and at every frame.
+    const long long next = state.step_count + 1;
+    const bool deform = next % job.deform_every == 0 || frame_of_step(next) >= 0 || next == total_steps;
+    const DesiccationStepReport r = solver.step(state, dt, deform);
+    deformation_iterations += r.deformation_iterations;
+    deformations += deform ? 1 : 0;
+    seconds_diffusion += r.seconds_diffusion;
+    seconds_deformation += r.seconds_deformation;
+    worst_inverted = std::max(worst_inverted, r.inverted_tets);
+    ++moisture_steps;
+    rows.push_back({state.time_s / 86400.0, desiccation_totals(model, state)});
+    progress.advance();
+    const int frame = frame_of_step(state.step_count);
+    if (frame > 0) {
+      write_frame(run, series, model, state, frame);
+      run.write("curves.csv", csv_text(rows, model.body.part_names));
+      write_desiccation_checkpoint(checkpoint, state);
+      run.write_record();
+    }
+    if (interrupt_requested()) {
+      write_desiccation_checkpoint(checkpoint, state);
+      run.write("curves.csv", csv_text(rows, model.body.part_names));
+      run.write_record();
+      throw CancelledError("mummify interrupted at day " + std::to_string(state.time_s / 86400.0) +
+                           "; continue with --resume");
+    }
+  }
+  progress.finish();
+  run.write("curves.csv", csv_text(rows, model.body.part_names));
+  write_desiccation_checkpoint(checkpoint, state);
+  run.add_output("checkpoint.bin");
+  if (moisture_steps > 0)
+    std::printf(
+        "per step: moisture %.3f s; deformation %.3f s (%lld solves, %.1f iterations each)\n",
+        seconds_diffusion / static_cast<double>(moisture_steps),
+        deformations > 0 ? seconds_deformation / static_cast<double>(deformations) : 0.0, deformations,
+        deformations > 0 ? static_cast<double>(deformation_iterations) / static_cast<double>(deformations) : 0.0);
+  run.timings().add("moisture steps", seconds_diffusion);
+  run.timings().add("deformation steps", seconds_deformation);
+  write_plots(run, rows, model.body.part_names);
+
+  const DesiccationTotals& t0 = rows.front().totals;
+  const DesiccationTotals& t1 = rows.back().totals;
+  std::printf("day %.1f: mass %.1f %%, water %.1f %%, volume %.1f %% of initial; %zu inverted tets\n",
+              state.time_s / 86400.0, 100.0 * t1.total_kg / t0.total_kg, 100.0 * t1.water_kg / t0.water_kg,
+              100.0 * t1.volume_mm3 / t0.volume_mm3, worst_inverted);
+  for (std::size_t p = 0; p < t1.part_water_kg.size(); ++p)
+    std::printf("  %-10s water %5.1f %%\n", model.body.part_names[p].c_str(),
+                t0.part_water_kg[p] > 0 ? 100.0 * t1.part_water_kg[p] / t0.part_water_kg[p] : 0.0);
+  run.facts()["mass_percent"] = 100.0 * t1.total_kg / t0.total_kg;
+  run.facts()["water_percent"] = 100.0 * t1.water_kg / t0.water_kg;
+  run.facts()["volume_percent"] = 100.0 * t1.volume_mm3 / t0.volume_mm3;
+  run.facts()["inverted_tets"] = worst_inverted;
+  run.facts()["evaporated_kg"] = state.evaporated_kg;
+  run.facts()["water_balance_error_kg"] = t0.water_kg - t1.water_kg - state.evaporated_kg;
+  run.facts()["steps"] = total_steps;
+
+  if (!a.no_pictures) {
+    Stopwatch picture_watch;
+    RenderSettings settings;
+    settings.width = settings.height = a.picture_size;
+    const DesiccationViews views = desiccation_views(kind);
+    const DesiccationState start = initial_desiccation_state(model);
+    std::vector<SheetCell> cells;
+    const Image outside = render_moisture(model, state, views, false, settings);
+    const Image cut = render_moisture(model, state, views, true, settings);
+    const Image shrunk = render_shrinkage(model, state, views, settings);
+    write_png(run.file("moisture_outside.png"), outside);
+    write_png(run.file("moisture_cut.png"), cut);
+    write_png(run.file("shrinkage.png"), shrunk);
+    for (const char* f : {"moisture_outside.png", "moisture_cut.png", "shrinkage.png"}) run.add_output(f);
+    char caption[80];
+    std::snprintf(caption, sizeof caption, "day %.0f", state.time_s / 86400.0);
+    cells.push_back({render_moisture(model, start, views, false, settings), "day 0: outside"});
+    cells.push_back({outside, std::string(caption) + ": moisture outside"});
+    cells.push_back({cut, std::string(caption) + ": moisture, cut through the bone"});
+    cells.push_back({shrunk, std::string(caption) + ": shrunken over the original"});
+    write_png(run.file("mummify_sheet.png"), make_sheet(cells, 2, "forensim mummify: " + kind));
+    run.add_output("mummify_sheet.png");
+    run.timings().add("pictures", picture_watch.seconds());
+  }
+  run.write_record();
+  std::printf("wrote %s (%s)\n", run.path().string().c_str(), format_seconds(watch.seconds()).c_str());
+  return 0;
+}
+
+const RegisterCommand mummify_command{
+    "mummify", [](CLI::App& app) {
+      auto* sub = app.add_subcommand(
+          "mummify", "Desiccation of a body model: moisture diffusion and volume shrinkage over days (FEM)");
+      auto a = std::make_shared<MummifyArgs>();
+      a->sub = sub;
+      sub->add_option("job", a->job, "Job file (JSON); command-line options override its values");
+      sub->add_option("--phantom", a->phantom, "Built-in phantom: arm or head")->check(CLI::IsMember({"arm", "head"}));
+      sub->add_option("--size", a->size, "Phantom model size: small, paper or fine")
+          ->check(CLI::IsMember({"small", "paper", "fine"}));
+      sub->add_option("--model", a->model, "Body model folder (forensim tetrahedralize --model) instead of a phantom");
+      sub->add_option("--days", a->days, "Simulated days")->check(CLI::Range(0.01, 3650.0));
+      sub->add_option("--frames", a->frames, "Output frames (.vtu) after the start")->check(CLI::Range(1, 1000));
+      sub->add_option("--step-hours", a->step_hours, "Time step (hours)")->check(CLI::Range(0.01, 240.0));
+      sub->add_option("--temperature", a->temperature, "Air temperature (C)")->check(CLI::Range(-40.0, 80.0));
+      sub->add_option("--humidity", a->humidity, "Relative humidity (%)")->check(CLI::Range(0.0, 99.0));
+      sub->add_option("--wind", a->wind, "Air speed (m/s)")->check(CLI::Range(0.0, 50.0));
+      sub->add_option("-o,--out", a->out, "Output folder");
+      sub->add_flag("--resume", a->resume, "Continue from the checkpoint in the output folder");
+      sub->add_flag("--no-pictures", a->no_pictures, "Skip the renders (curves and plots are still written)");
+      sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(64, 4096));
+      return [a]() { return run_mummify(*a); };
+    }};
+
+}  // namespace
+}  // namespace forensim::cli

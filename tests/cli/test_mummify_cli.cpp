@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli/cli_runner.hpp"
+#include "core/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+using test::run_cli;
+
+// The job file is checked before anything is built or written: unknown keys, wrong types and values out of
+// range are job errors (exit code 4) naming the key.
+TEST(MummifyCli, RejectsBadJobsBeforeWriting) {
+  const auto dir = test::scratch_dir("mummify_cli_jobs");
+  const auto out = dir / "out";
+  std::filesystem::remove_all(out);
+  write_file_atomic(dir / "typo.json", R"({"days": 3, "environment": {"humidty_percent": 20}})");
+  auto r = run_cli("mummify " + (dir / "typo.json").string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("humidty_percent"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "run.json"));
+
+  write_file_atomic(dir / "range.json", R"({"environment": {"humidity_percent": 300}})");
+  r = run_cli("mummify " + (dir / "range.json").string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("humidity_percent"), std::string::npos) << r.output;
+
+  write_file_atomic(dir / "type.json", R"({"body": {"phantom": "leg"}})");
+  r = run_cli("mummify " + (dir / "type.json").string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+
+  write_file_atomic(dir / "broken.json", R"({"days": )");
+  r = run_cli("mummify " + (dir / "broken.json").string() + " -o " + out.string());
+  EXPECT_NE(r.exit_code, 0) << r.output;
+}
+
+TEST(MummifyCli, RejectsBadArguments) {
+  const auto out = test::scratch_dir("mummify_cli_args") / "out";
+  EXPECT_EQ(run_cli("mummify --humidity 150 -o " + out.string()).exit_code, 2);
+  EXPECT_EQ(run_cli("mummify --phantom leg -o " + out.string()).exit_code, 2);
+  const auto missing = run_cli("mummify /no/such/job.json -o " + out.string());
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(run_cli("mummify --help").output.find("--resume"), std::string::npos);
+}
