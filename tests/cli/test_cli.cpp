@@ -41,7 +41,8 @@ TEST(Cli, VersionAndHelp) {
   EXPECT_NE(version.output.find("forensim 0."), std::string::npos) << version.output;
   const auto help = run_cli("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* command : {"info", "convert", "isosurface", "render", "phantom", "demo"}) {
+  for (const char* command :
+       {"info", "convert", "isosurface", "render", "phantom", "tetrahedralize", "mummify", "wound", "demo"}) {
     EXPECT_NE(help.output.find(command), std::string::npos) << command;
   }
 }
