@@ -22,7 +22,9 @@
 #include "mesh_io/mesh_writer.hpp"
 #include "mesh_processing/repair_mesh.hpp"
 #include "phantoms/ct_head_phantom.hpp"
+#include "phantoms/forearm_uv.hpp"
 #include "phantoms/phantom_surface.hpp"
+#include "phantoms/skin_maps.hpp"
 #include "pictures.hpp"
 #include "render/renderer.hpp"
 #include "render/sheet.hpp"
@@ -41,6 +43,7 @@ struct DemoArgs {
   int picture_size = 640;
   int samples = 8;
   std::string model_size = "paper";
+  int uv_resolution = 2048;
 };
 
 struct DemoContext {
@@ -140,6 +143,42 @@ std::string percent(double value, double reference) {
   char text[32];
   std::snprintf(text, sizeof text, "%+.2f %%", 100.0 * (value / reference - 1.0));
   return text;
+}
+
+// The forearm-uv phantom: UV atlas figures, skin maps and textured pictures.
+void forearm_uv_section(DemoContext& ctx, int resolution) {
+  ForearmUvOptions options;
+  options.resolution = resolution;
+  const ForearmUvModel model = make_forearm_uv(options);
+  ctx.timed("phantom forearm-uv: surface and UV atlas", model.seconds_surface + model.seconds_atlas);
+  const SkinMaps maps = make_skin_maps(model.mesh, resolution, 1);
+  ctx.timed("phantom forearm-uv: skin maps " + std::to_string(resolution) + "^2", maps.seconds);
+  const ForearmUvStats& st = model.stats;
+  char stretch[96], seams[96];
+  std::snprintf(stretch, sizeof stretch, "%.3f (worst chart %.3f), area distortion %.3f", st.l2_stretch,
+                st.max_chart_l2_stretch, st.area_distortion);
+  std::snprintf(seams, sizeof seams, "%.0f mm, %.0f %% on hidden (palmar) sides", st.seam_length_mm,
+                100.0 * st.hidden_seam_fraction);
+  ctx.report.facts({{"skin", format_count(model.mesh.triangle_count()) + " triangles, " +
+                                 std::to_string(model.chart_names.size()) + " UV charts"},
+                    {"L2 stretch (1 = none)", stretch},
+                    {"seams", seams},
+                    {"overlaps", st.overlap_free ? "none" : "found"},
+                    {"packing", std::to_string(static_cast<int>(100.0 * st.packing_efficiency + 0.5)) + " %"},
+                    {"maps", std::to_string(resolution) + "^2: epidermis, dermis, specular, normal"}});
+  ctx.run.facts()["forearm_uv"] = {{"overlap_free", st.overlap_free}, {"l2_stretch", st.l2_stretch}};
+  Stopwatch watch;
+  const auto cells =
+      textured_arm_cells(std::make_shared<const TriMesh>(model.mesh), std::make_shared<const Image>(maps.epidermis),
+                         std::make_shared<const Image>(maps.normal), ctx.settings);
+  ctx.picture(make_sheet(cells, 3, "phantom: forearm-uv"), "phantom_forearm_uv.png",
+              "forearm-uv: the skin with its procedural maps, and the colour map's UV layout");
+  ctx.picture(make_sheet({{maps.dermis.resized(ctx.settings.width, ctx.settings.height), "lower skin (dermis)"},
+                          {maps.specular.resized(ctx.settings.width, ctx.settings.height), "specular"},
+                          {maps.normal.resized(ctx.settings.width, ctx.settings.height), "normal (tangent space)"}},
+                         3, "forearm-uv: the other maps"),
+              "phantom_forearm_uv_maps.png", "forearm-uv: lower skin colour, specular and normal maps");
+  ctx.timed("phantom forearm-uv: pictures", watch.seconds());
 }
 
 // One row of the body-model table: counts, volume errors, quality and time.
@@ -305,6 +344,13 @@ int run_demo(const DemoArgs& a) {
       phantom_section(ctx, name);
     });
   }
+  add_stage(stages, "phantom forearm-uv", [&] {
+    report.section("Body-part phantom: forearm-uv",
+                   "The arm's skin as a painting surface for the wound system: a UV atlas (charts cut along the "
+                   "palmar sides, flattened with ARAP or LSCM, packed at one texel density) and procedural skin "
+                   "maps baked from solid noise at the 3D surface points, so they match across seams.");
+    forearm_uv_section(ctx, a.uv_resolution);
+  });
   for (const std::string name : {"arm", "head"}) {
     add_stage(stages, "body model " + name, [&ctx, &report, &a, name] {
       report.section(
@@ -418,6 +464,8 @@ const RegisterCommand demo_command{
       sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(64, 4096));
       sub->add_option("--samples", a->samples, "Samples per pixel")->check(CLI::Range(1, 256));
       sub->add_option("--model-size", a->model_size, "Size of the phantom body models: small, paper or fine");
+      sub->add_option("--uv-resolution", a->uv_resolution, "Size of the forearm-uv skin maps")
+          ->check(CLI::Range(64, 8192));
       return [a]() { return run_demo(*a); };
     }};
 

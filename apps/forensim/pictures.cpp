@@ -169,6 +169,24 @@ std::vector<SheetCell> tet_model_cells(const BodyViews& views, std::shared_ptr<c
   return cells;
 }
 
+std::vector<SheetCell> textured_arm_cells(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const Image> colour,
+                                          std::shared_ptr<const Image> normal, const RenderSettings& settings) {
+  const BodyViews views = body_views("arm");
+  SurfaceMaterial material = SurfaceMaterial::skin(Vec3f::Ones());
+  material.colour_source = ColourSource::texture;
+  material.base_texture = colour;
+  material.normal_map = std::move(normal);
+  Scene scene;
+  scene.environment.up = views.axes.up;
+  scene.add(std::move(skin), material, "skin");
+  std::vector<SheetCell> cells;
+  cells.push_back({render_view(scene, settings, "top", views.axes), "back of the hand"});
+  cells.push_back({render_view(scene, settings, "bottom", views.axes), "palm"});
+  Image layout = colour->resized(settings.width, settings.height);
+  cells.push_back({layout, "upper skin colour map (UV layout)"});
+  return cells;
+}
+
 ViewAxes axes_from_name(const std::string& name) {
   if (name == "lps") return ViewAxes{};
   if (name == "yup") return ViewAxes{Vec3::UnitY(), Vec3::UnitZ()};

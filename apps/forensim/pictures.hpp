@@ -66,6 +66,11 @@ BodyViews body_views(const std::string& kind, const ViewAxes& axes = {});
 std::vector<SheetCell> tet_model_cells(const BodyViews& views, std::shared_ptr<const TriMesh> skin,
                                        const TetMesh& volume, const RenderSettings& settings);
 
+/// Pictures of a skin with its maps (linear epidermis colour and tangent-space normal map through the mesh's
+/// UVs): the back of the hand and the palm of the arm frame, and the colour map itself (the UV layout).
+std::vector<SheetCell> textured_arm_cells(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const Image> colour,
+                                          std::shared_ptr<const Image> normal, const RenderSettings& settings);
+
 /// Axes by name: "lps" (CT: z up, -y front) or "yup" (glTF/OBJ heads: y up, +z front).
 ViewAxes axes_from_name(const std::string& name);
 

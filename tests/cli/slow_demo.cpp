@@ -14,8 +14,8 @@ using namespace forensim;
 // pictures and a run record.
 TEST(Demo, WritesReportWithPicturesAndTimings) {
   const auto dir = test::scratch_dir("demo");
-  const auto result =
-      test::run_cli("demo --out " + dir.string() + " --picture-size 128 --samples 2 --model-size small");
+  const auto result = test::run_cli("demo --out " + dir.string() +
+                                    " --picture-size 128 --samples 2 --model-size small --uv-resolution 256");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::string html = read_file(dir / "report.html");
   EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
@@ -24,6 +24,7 @@ TEST(Demo, WritesReportWithPicturesAndTimings) {
   EXPECT_EQ(html.find("failed"), std::string::npos) << "a demo stage failed; see the report";
   const auto record = nlohmann::json::parse(read_file(dir / "run.json"));
   EXPECT_EQ(record["command"], "demo");
+  EXPECT_TRUE(record["facts"]["forearm_uv"]["overlap_free"].get<bool>());
   EXPECT_TRUE(record["facts"]["ct_phantom"]["skin_closed"].get<bool>());
   EXPECT_TRUE(record["facts"]["ct_phantom"]["bone_closed"].get<bool>());
   if (!test::data_path("ct-head-headsq/quarter.nhdr").empty()) {
