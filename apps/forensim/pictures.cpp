@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "geometry/bounding_box.hpp"
 #include "geometry/tet_boundary.hpp"
+#include "geometry/tet_cut.hpp"
 #include "image/jpeg_io.hpp"
 #include "image/png_io.hpp"
 #include "render/renderer.hpp"
@@ -112,18 +113,7 @@ std::vector<SheetCell> phantom_view_cells(const std::string& phantom_name, std::
 }
 
 Scene tet_cutaway_scene(const TetMesh& mesh, const Vec3& cut_normal, const ViewAxes& axes) {
-  const Vec3 centre = bounding_box(mesh.positions).center();
-  const Vec3 n = cut_normal.normalized();
-  TetMesh kept;
-  kept.positions = mesh.positions;
-  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-    Vec3 c = Vec3::Zero();
-    for (Index v : mesh.tets[t]) c += mesh.positions[static_cast<std::size_t>(v)] / 4.0;
-    if ((c - centre).dot(n) <= 0.0) {
-      kept.tets.push_back(mesh.tets[t]);
-      kept.tet_labels.push_back(mesh.label(t));
-    }
-  }
+  const TetMesh kept = tets_behind_plane(mesh, bounding_box(mesh.positions).center(), cut_normal);
   Scene scene;
   scene.environment.up = axes.up;
   auto flesh = std::make_shared<TriMesh>(tet_boundary_mesh(kept, tissue_flesh));

@@ -4,6 +4,7 @@
 
 #include "geometry/bounding_box.hpp"
 #include "geometry/tet_boundary.hpp"
+#include "geometry/tet_cut.hpp"
 #include "render/colour_bar.hpp"
 #include "render/renderer.hpp"
 #include "render/scene.hpp"
@@ -22,16 +23,10 @@ TetMesh posed_volume(const DesiccationModel& model, const std::vector<Vec3>& pos
     posed.tet_labels = rest.tet_labels;
     return posed;
   }
-  const Vec3 centre = bounding_box(rest.positions).center();
-  const Vec3 n = cut_normal->normalized();
-  for (std::size_t t = 0; t < rest.tet_count(); ++t) {
-    Vec3 c = Vec3::Zero();
-    for (Index v : rest.tets[t]) c += rest.positions[static_cast<std::size_t>(v)] / 4.0;
-    if ((c - centre).dot(n) <= 0.0) {
-      posed.tets.push_back(rest.tets[t]);
-      posed.tet_labels.push_back(rest.label(t));
-    }
-  }
+  // Chosen on the rest shape, so the same tets show at every frame.
+  TetMesh kept = tets_behind_plane(rest, bounding_box(rest.positions).center(), *cut_normal);
+  posed.tets = std::move(kept.tets);
+  posed.tet_labels = std::move(kept.tet_labels);
   return posed;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "body/body_model.hpp"
 #include "core/types.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/primitives.hpp"
@@ -63,6 +64,17 @@ inline TetMesh make_inside_cube_volume(const Phantom& phantom, double h) {
         }
       }
   return out;
+}
+
+/// A 10 mm box volume (3^3 cells, every seventh tet bone) under a skin box 0.2 mm larger, with two parts split
+/// at x = 5.
+inline BodyModel box_model() {
+  TetMesh volume = make_box_tet_mesh(Vec3::Zero(), Vec3::Constant(10.0), 3, 3, 3);
+  for (std::size_t t = 0; t < volume.tets.size(); ++t)
+    volume.tet_labels.push_back(t % 7 == 0 ? tissue_bone : tissue_flesh);
+  TriMesh skin = make_box_mesh(Vec3::Constant(-0.2), Vec3::Constant(10.2), 6);
+  return make_body_model(std::move(volume), std::move(skin), {"left", "right"},
+                         [](const Vec3& p) { return p.x() < 5.0 ? 0 : 1; });
 }
 
 }  // namespace forensim::test

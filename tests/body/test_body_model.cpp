@@ -9,19 +9,7 @@
 #include "spatial/closest_point.hpp"
 
 using namespace forensim;
-
-namespace {
-
-BodyModel box_model() {
-  TetMesh volume = make_box_tet_mesh(Vec3::Zero(), Vec3::Constant(10.0), 3, 3, 3);
-  for (std::size_t t = 0; t < volume.tets.size(); ++t)
-    volume.tet_labels.push_back(t % 7 == 0 ? tissue_bone : tissue_flesh);
-  TriMesh skin = make_box_mesh(Vec3::Constant(-0.2), Vec3::Constant(10.2), 6);
-  return make_body_model(std::move(volume), std::move(skin), {"left", "right"},
-                         [](const Vec3& p) { return p.x() < 5.0 ? 0 : 1; });
-}
-
-}  // namespace
+using test::box_model;
 
 TEST(BodyModel, AssemblesBoundaryTrackingAndParts) {
   const BodyModel m = box_model();

@@ -11,6 +11,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "geometry/tet_boundary.hpp"
+#include "hausdorff.hpp"
 #include "mesh_io/mesh_import.hpp"
 #include "spatial/closest_point.hpp"
 #include "support/test_support.hpp"
@@ -21,17 +22,6 @@
 using namespace forensim;
 
 namespace {
-
-/// Largest distance from the points of `from` (vertices and triangle centroids) to the surface `to`.
-double one_way_distance(const TriMesh& from, const TriMesh& to) {
-  const ClosestPointQuery query(to);
-  std::vector<Vec3> points = from.positions;
-  for (const Tri& t : from.triangles)
-    points.push_back((from.positions[t[0]] + from.positions[t[1]] + from.positions[t[2]]) / 3.0);
-  double worst = 0.0;
-  for (const auto& hit : query.query_batch(points)) worst = std::max(worst, hit ? hit->distance : 1e300);
-  return worst;
-}
 
 void check_model(const std::string& name, const TriMesh& skin, const TetMesh& tets, const TetrahedralizeReport& r,
                  bool has_bone) {
@@ -52,7 +42,8 @@ void check_model(const std::string& name, const TriMesh& skin, const TetMesh& te
   double edge_sum = 0.0;
   for (const Tri& t : boundary.triangles) edge_sum += (boundary.positions[t[0]] - boundary.positions[t[1]]).norm();
   const double mean_edge = edge_sum / static_cast<double>(boundary.triangle_count());
-  const double to_skin = one_way_distance(boundary, skin), from_skin = one_way_distance(skin, boundary);
+  const double to_skin = tet_test::one_way_distance(boundary, skin),
+               from_skin = tet_test::one_way_distance(skin, boundary);
   std::printf("Hausdorff: boundary->skin %.3f mm, skin->boundary %.3f mm, mean boundary edge %.2f mm\n", to_skin,
               from_skin, mean_edge);
   EXPECT_LT(to_skin, mean_edge);

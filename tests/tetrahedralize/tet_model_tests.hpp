@@ -18,6 +18,7 @@
 #include "geometry/mesh_topology.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/tet_boundary.hpp"
+#include "hausdorff.hpp"
 #include "phantoms/phantom.hpp"
 #include "phantoms/phantom_surface.hpp"
 #include "spatial/closest_point.hpp"
@@ -130,17 +131,7 @@ TEST_P(ModelTets, LabelsAgreeWithPointInMeshTests) {
 TEST_P(ModelTets, BoundaryLiesWithinAnEdgeLengthOfTheSkin) {
   const tet_test::Meshed& m = tet_test::coarse(GetParam());
   const TriMesh boundary = tet_boundary_mesh(m.tets);
-  // Both directions of the Hausdorff distance, measured at the vertices and triangle centroids.
-  const auto one_way = [](const TriMesh& from, const TriMesh& to) {
-    const ClosestPointQuery query(to);
-    std::vector<Vec3> points = from.positions;
-    for (const Tri& t : from.triangles)
-      points.push_back((from.positions[t[0]] + from.positions[t[1]] + from.positions[t[2]]) / 3.0);
-    double worst = 0.0;
-    for (const auto& hit : query.query_batch(points)) worst = std::max(worst, hit ? hit->distance : 1e300);
-    return worst;
-  };
-  EXPECT_LT(one_way(boundary, m.skin), m.edge);
-  EXPECT_LT(one_way(m.skin, boundary), m.edge);
+  EXPECT_LT(tet_test::one_way_distance(boundary, m.skin), m.edge);
+  EXPECT_LT(tet_test::one_way_distance(m.skin, boundary), m.edge);
   EXPECT_TRUE(check_topology(boundary).is_closed());
 }
