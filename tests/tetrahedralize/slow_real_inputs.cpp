@@ -23,8 +23,10 @@ using namespace forensim;
 
 namespace {
 
+// `from_ct`: meshed without the manifold criterion (tetrahedralize_ct), so the boundary is watertight but may
+// pinch where the skull nearly touches itself, and the bound is the issue's: below the target edge length.
 void check_model(const std::string& name, const TriMesh& skin, const TetMesh& tets, const TetrahedralizeReport& r,
-                 bool has_bone) {
+                 bool has_bone, bool from_ct = false) {
   const TetQualityReport q = tet_quality(tets);
   std::printf("%s:\n%s%s", name.c_str(), r.summary().c_str(), q.summary().c_str());
   for (const std::string& note : r.notes) std::printf("note: %s\n", note.c_str());
@@ -36,7 +38,11 @@ void check_model(const std::string& name, const TriMesh& skin, const TetMesh& te
   EXPECT_EQ(q.inverted_count, 0u);
   EXPECT_EQ(q.flat_count, 0u);
   const TriMesh boundary = tet_boundary_mesh(tets);
-  EXPECT_TRUE(check_topology(boundary).is_closed());
+  if (from_ct) {
+    EXPECT_EQ(check_topology(boundary).boundary_edge_count, 0u);
+  } else {
+    EXPECT_TRUE(check_topology(boundary).is_closed());
+  }
   // The boundary follows the skin to well within the mesh's own edge length (measured as the mean boundary
   // edge, which is what a user sees).
   double edge_sum = 0.0;
@@ -46,8 +52,9 @@ void check_model(const std::string& name, const TriMesh& skin, const TetMesh& te
                from_skin = tet_test::one_way_distance(skin, boundary);
   std::printf("Hausdorff: boundary->skin %.3f mm, skin->boundary %.3f mm, mean boundary edge %.2f mm\n", to_skin,
               from_skin, mean_edge);
-  EXPECT_LT(to_skin, mean_edge);
-  EXPECT_LT(from_skin, mean_edge);
+  const double bound = from_ct ? r.edge_length_mm : mean_edge;
+  EXPECT_LT(to_skin, bound);
+  EXPECT_LT(from_skin, bound);
 }
 
 }  // namespace
@@ -98,6 +105,6 @@ TEST(RealInputs, CtHeadWithTheSkullAsBone) {
   o.target_nodes = 20000;
   TetrahedralizeReport r;
   const TetMesh tets = tetrahedralize_ct(grid, 500.0, 1150.0, o, &r);
-  check_model("CT head (headsq)", skin, tets, r, true);
+  check_model("CT head (headsq)", skin, tets, r, true, true);
   EXPECT_GT(r.bone_tet_count, 1000u);
 }
