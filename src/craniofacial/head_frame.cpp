@@ -1,5 +1,6 @@
 #include "craniofacial/head_frame.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "core/error.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
 #include "geometry/bounding_box.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "spatial/closest_point.hpp"
 
 namespace forensim {
@@ -114,52 +116,81 @@ SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const Plane& initial, c
     throw InputError("symmetry plane", "initial plane", "is not finite or has a zero normal");
   }
   const ClosestPointQuery query(mesh);
+  const std::vector<Vec3> normals = face_normals(mesh);
   const std::size_t stride = std::max<std::size_t>(
       1, (mesh.positions.size() + options.max_samples - 1) / std::max<std::size_t>(1, options.max_samples));
+  // Samples relative to the initial point keep the normal equations well conditioned far from the origin.
+  const Vec3 origin = initial.point;
   std::vector<Vec3> samples;
-  for (std::size_t i = 0; i < mesh.positions.size(); i += stride) samples.push_back(mesh.positions[i]);
+  for (std::size_t i = 0; i < mesh.positions.size(); i += stride) samples.push_back(mesh.positions[i] - origin);
   const double size = std::max(bounding_box(mesh.positions).diagonal(), 1e-12);
 
-  SymmetryPlaneFit fit;
-  fit.plane = Plane{initial.point, initial.normal.normalized()};
-  std::vector<Vec3> mirrored(samples.size());
-  for (int it = 0; it < options.max_iterations; ++it) {
-    for (std::size_t i = 0; i < samples.size(); ++i) mirrored[i] = fit.plane.reflect(samples[i]);
+  Vec3 n = initial.normal.normalized();
+  double d = 0.0;  // plane: n . x = d in sample coordinates
+  struct Pair {
+    double error;
+    std::size_t i;
+    Vec3 c;  // closest mesh point of the mirrored sample
+    Vec3 m;  // mesh normal there
+  };
+  const auto correspondences = [&](const Vec3& normal, double offset) {
+    std::vector<Vec3> mirrored(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      mirrored[i] = samples[i] - 2.0 * (normal.dot(samples[i]) - offset) * normal + origin;
+    }
     const auto hits = query.query_batch(mirrored);
-    struct Pair {
-      double error;
-      std::size_t i;
-      Vec3 c;
-    };
     std::vector<Pair> pairs;
     pairs.reserve(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      if (hits[i]) pairs.push_back({hits[i]->distance, i, hits[i]->point});
+      if (hits[i]) pairs.push_back({hits[i]->distance, i, hits[i]->point - origin, normals[hits[i]->triangle]});
     }
     std::sort(pairs.begin(), pairs.end(),
               [](const Pair& a, const Pair& b) { return a.error < b.error || (a.error == b.error && a.i < b.i); });
     const std::size_t keep = std::max<std::size_t>(
         1, static_cast<std::size_t>(std::llround(double(pairs.size()) * (1.0 - options.trim_fraction))));
     pairs.resize(std::min(keep, pairs.size()));
-    Vec3 normal_sum = Vec3::Zero();
-    Vec3 mid_sum = Vec3::Zero();
+    return pairs;
+  };
+  const auto rms = [](const std::vector<Pair>& pairs) {
     double squared = 0.0;
-    for (const Pair& pr : pairs) {
-      const Vec3 d = samples[pr.i] - pr.c;  // v - c, where c approximates v's mirror image
-      normal_sum += d.dot(fit.plane.normal) >= 0.0 ? d : Vec3(-d);
-      mid_sum += 0.5 * (samples[pr.i] + pr.c);
-      squared += pr.error * pr.error;
-    }
-    fit.rms_mm = std::sqrt(squared / double(pairs.size()));
+    for (const Pair& p : pairs) squared += p.error * p.error;
+    return pairs.empty() ? 0.0 : std::sqrt(squared / double(pairs.size()));
+  };
+
+  SymmetryPlaneFit fit;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const std::vector<Pair> pairs = correspondences(n, d);
     fit.iterations = it + 1;
-    if (normal_sum.norm() <= 1e-12) break;  // every sample on the plane: nothing to refine
-    Plane next{mid_sum / double(pairs.size()), normal_sum.normalized()};
-    next.point = next.project(fit.plane.point);  // keep the plane's reference point near the old one
-    const double moved =
-        std::abs(next.signed_distance(fit.plane.point)) + size * (next.normal - fit.plane.normal).norm();
-    fit.plane = next;
+    // Point-to-plane Gauss-Newton step on r_i = m_i . (mirror(v_i) - c_i) over (a, b, delta d), with the normal
+    // perturbed as n + a e1 + b e2 and mirror(v) = v - 2 (n . v - d) n.
+    const Vec3 e1 = n.unitOrthogonal();
+    const Vec3 e2 = n.cross(e1);
+    Mat3 jtj = Mat3::Zero();
+    Vec3 jtr = Vec3::Zero();
+    for (const Pair& p : pairs) {
+      const Vec3& v = samples[p.i];
+      const double s = n.dot(v) - d;
+      const Vec3 mirrored = v - 2.0 * s * n;
+      const double r = p.m.dot(mirrored - p.c);
+      const double mn = p.m.dot(n);
+      const Vec3 j(-2.0 * e1.dot(v) * mn - 2.0 * s * p.m.dot(e1), -2.0 * e2.dot(v) * mn - 2.0 * s * p.m.dot(e2),
+                   2.0 * mn);
+      jtj += j * j.transpose();
+      jtr += j * r;
+    }
+    const Eigen::LDLT<Mat3> ldlt(jtj);
+    if (ldlt.info() != Eigen::Success || !(jtj.norm() > 0.0)) break;
+    const Vec3 step = -ldlt.solve(jtr);
+    if (!step.allFinite()) break;
+    const Vec3 next = (n + step[0] * e1 + step[1] * e2).normalized();
+    const double moved = std::abs(step[2]) + size * (next - n).norm();
+    n = next;
+    d += step[2];
     if (moved < options.tolerance_mm) break;
   }
+  const std::vector<Pair> final_pairs = correspondences(n, d);
+  fit.rms_mm = rms(final_pairs);
+  fit.plane = Plane{origin + d * n, n};
   return fit;
 }
 
@@ -189,7 +220,9 @@ HeadFrame head_frame(const Plane& frankfort, const Plane& midsagittal, const Lan
   frame.axes.col(0) = x;
   frame.axes.col(1) = y;
   frame.axes.col(2) = z;
-  frame.origin = midsagittal.project(0.5 * (po_l + po_r));
+  // The porions' midpoint, moved along x (within the Frankfort plane) onto the midsagittal plane.
+  const Vec3 mid = 0.5 * (po_l + po_r);
+  frame.origin = mid - (midsagittal.signed_distance(mid) / midsagittal.normal.normalized().dot(x)) * x;
   frame.perpendicularity_deg =
       std::abs(90.0 - std::acos(std::clamp(std::abs(midsagittal.normal.normalized().dot(z)), 0.0, 1.0)) * 180.0 / M_PI);
   return frame;

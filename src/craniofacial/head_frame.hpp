@@ -50,20 +50,20 @@ struct SymmetryPlaneOptions {
 struct SymmetryPlaneFit {
   Plane plane;
   int iterations = 0;
-  double rms_mm = 0.0;  ///< RMS distance between mirrored vertices and the mesh over the kept pairs
+  double rms_mm = 0.0;  ///< RMS distance from mirrored sample vertices to the mesh at the fitted plane (kept pairs)
 };
 
 /// The mirror-symmetry plane of a mesh, refined from `initial` (e.g. the landmark midsagittal plane) by
-/// iterated closest points: every sample vertex v is mirrored, its closest mesh point c found, and the plane
-/// refitted as the one that bisects the pairs (v, c): normal along the mean of the sign-aligned (v - c), through
-/// the mean of the midpoints (v + c) / 2, the worst `trim_fraction` of pairs dropped. Throws InputError for an
-/// empty mesh.
+/// point-to-plane iterated closest points: every sample vertex v is mirrored, the closest mesh point c and its
+/// face normal m are found, the worst `trim_fraction` of pairs dropped (asymmetries, damage), and a Gauss-Newton
+/// step on the plane's normal and offset reduces sum (m . (mirror(v) - c))^2; repeated until the plane moves
+/// less than the tolerance. Deterministic (batch queries keep their order). Throws InputError for an empty mesh.
 SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const Plane& initial,
                                     const SymmetryPlaneOptions& options = {});
 
 /// Right-handed anatomical frame in LPS orientation: x towards the subject's left, y posterior, z superior.
 struct HeadFrame {
-  Vec3 origin = Vec3::Zero();         ///< the porions' midpoint, projected onto the midsagittal plane (world mm)
+  Vec3 origin = Vec3::Zero();         ///< porions' midpoint moved along x onto the midsagittal plane (world mm)
   Mat3 axes = Mat3::Identity();       ///< columns: the frame's x, y, z in world coordinates
   Plane frankfort;                    ///< z = 0 of the frame
   Plane midsagittal;                  ///< as given (x = 0 of the frame up to its tilt against the Frankfort plane)

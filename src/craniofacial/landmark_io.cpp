@@ -152,6 +152,8 @@ LandmarkSet parse_markups_json(const std::string& text, const std::string& sourc
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source, line_column(text, e.byte > 0 ? e.byte - 1 : 0), std::string("invalid JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    throw InputError(source, "", std::string("invalid JSON: ") + e.what());
   }
   if (!doc.is_object()) throw InputError(source, "", "markups file must hold a JSON object");
   const nlohmann::json* markups = member(doc, "markups");
