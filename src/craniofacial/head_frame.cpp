@@ -232,4 +232,11 @@ HeadFrame head_frame_from_landmarks(const LandmarkSet& skull_landmarks) {
   return head_frame(frankfort_plane(skull_landmarks), midsagittal_plane(skull_landmarks), skull_landmarks);
 }
 
+HeadFrame head_frame_from_skull(const TriMesh& skull, const LandmarkSet& skull_landmarks,
+                                const SymmetryPlaneOptions& options, SymmetryPlaneFit* fit) {
+  const SymmetryPlaneFit symmetry = fit_symmetry_plane(skull, midsagittal_plane(skull_landmarks), options);
+  if (fit != nullptr) *fit = symmetry;
+  return head_frame(frankfort_plane(skull_landmarks), symmetry.plane, skull_landmarks);
+}
+
 }  // namespace forensim

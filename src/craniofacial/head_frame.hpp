@@ -83,5 +83,10 @@ struct HeadFrame {
 HeadFrame head_frame(const Plane& frankfort, const Plane& midsagittal, const LandmarkSet& skull_landmarks);
 /// head_frame(frankfort_plane(l), midsagittal_plane(l), l).
 HeadFrame head_frame_from_landmarks(const LandmarkSet& skull_landmarks);
+/// The frame with the skull's own symmetry plane: the Frankfort plane from the landmarks, the midsagittal plane
+/// fitted to `skull` (fit_symmetry_plane) from the landmarks' midsagittal plane. For skulls whose landmarks are
+/// few or placed roughly; the fit's RMS is returned through `fit` when not null.
+HeadFrame head_frame_from_skull(const TriMesh& skull, const LandmarkSet& skull_landmarks,
+                                const SymmetryPlaneOptions& options = {}, SymmetryPlaneFit* fit = nullptr);
 
 }  // namespace forensim

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "craniofacial/head_frame.hpp"
 #include "geometry/primitives.hpp"
 
@@ -126,4 +127,43 @@ TEST(HeadFrame, SymmetryPlaneOfAMirrorSymmetricMeshFromAPerturbedStart) {
   SymmetryPlaneOptions none;
   none.max_iterations = 0;
   EXPECT_GT(fit_symmetry_plane(mesh, start, none).rms_mm, 10.0 * fit.rms_mm);
+}
+
+TEST(HeadFrame, FrameFromTheSkullsSymmetryPlaneCorrectsRoughLandmarks) {
+  TriMesh mesh = make_icosphere(Vec3::Zero(), 70.0, 4);
+  for (Vec3& p : mesh.positions) {
+    const double x = p.x(), y = p.y(), z = p.z();
+    p = Vec3(x * (1.0 + 0.002 * y), 1.2 * y + 0.004 * x * x + 0.003 * z * z, z + 0.003 * y * y);
+  }
+  const Eigen::Affine3d t = pose();
+  for (Vec3& p : mesh.positions) p = t * p;
+  LandmarkSet rough = posed_landmarks(t);
+  // A zygion placed 5 mm off tilts the landmark midsagittal plane; the skull's symmetry plane does not tilt.
+  rough.set({"zy_L", t * (k_canonical.at("zy_L") + Vec3(0, 5, 3)), LandmarkSource::edited, 1.0});
+  const HeadFrame from_landmarks = head_frame_from_landmarks(rough);
+  SymmetryPlaneFit fit;
+  const HeadFrame from_skull = head_frame_from_skull(mesh, rough, {}, &fit);
+  const Vec3 true_x = t.linear() * Vec3::UnitX();
+  const auto angle = [](const Vec3& a, const Vec3& b) {
+    return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  EXPECT_GT(angle(from_landmarks.midsagittal.normal, true_x), 0.2);
+  EXPECT_LT(angle(from_skull.midsagittal.normal, true_x), 0.1);
+  EXPECT_LT(angle(from_skull.axes.col(2), t.linear() * Vec3::UnitZ()), 1e-9);  // Frankfort plane is exact
+  EXPECT_LT(fit.rms_mm, 0.5);
+}
+
+TEST(HeadFrame, SymmetryPlaneIsTheSameAtAnyThreadCount) {
+  TriMesh mesh = make_icosphere(Vec3(3, 1, -2), 60.0, 3);
+  for (Vec3& p : mesh.positions) p = Vec3(p.x(), p.y() + 0.004 * p.x() * p.x(), p.z() + 0.002 * p.y() * p.y());
+  const Plane start{Vec3(5, 1, -2), Vec3(1, 0.1, 0.05).normalized()};
+  const int threads = thread_count();
+  set_thread_count(1);
+  const SymmetryPlaneFit one = fit_symmetry_plane(mesh, start);
+  set_thread_count(4);
+  const SymmetryPlaneFit four = fit_symmetry_plane(mesh, start);
+  set_thread_count(threads);
+  EXPECT_EQ(one.plane.normal, four.plane.normal);
+  EXPECT_EQ(one.plane.point, four.plane.point);
+  EXPECT_EQ(one.iterations, four.iterations);
 }
