@@ -41,9 +41,9 @@ Plane midsagittal_plane(const LandmarkSet& skull_landmarks);
 
 struct SymmetryPlaneOptions {
   int max_iterations = 50;
-  std::size_t max_samples = 20000;  ///< vertices used (every k-th vertex when the mesh has more)
-  double trim_fraction = 0.2;       ///< share of worst-matched pairs dropped each iteration (asymmetries, damage)
-  double tolerance_mm = 1e-4;       ///< stop when the plane moves less than this (offset and normal x size)
+  std::size_t max_samples = 5000;  ///< vertices used (every k-th vertex when the mesh has more)
+  double trim_fraction = 0.2;      ///< share of worst-matched pairs dropped each iteration (asymmetries, damage)
+  double tolerance_mm = 1e-4;      ///< stop when the plane moves less than this (offset and normal x size)
 };
 
 /// Result of the symmetry-plane fit.
