@@ -9,6 +9,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/job.hpp"
+#include "core/random.hpp"
 #include "craniofacial/csv_table.hpp"
 #include "craniofacial/embedded_tables.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
@@ -286,6 +287,31 @@ TissueDepths offset_by_sd(const TissueDepths& depths, double k) {
     }
     e.mean_mm = value;
     e.source += " (" + offset + ")";
+  }
+  return out;
+}
+
+TissueDepths sample_tissue_depths(const TissueDepths& depths, std::uint64_t seed, std::uint64_t member) {
+  TissueDepths out = depths;
+  out.variant = fmt::format("sampled from mean and SD (seed {}, member {})", seed, member);
+  RandomStream rng(seed, member);
+  for (TissueDepthEntry& e : out.entries) {
+    if (!e.sd_mm) {
+      throw InputError("tissue-depth table " + depths.table, "site " + e.site,
+                       "has no SD, so depths cannot be sampled (no spread is invented)");
+    }
+    double value = e.mean_mm;
+    if (*e.sd_mm > 0.0) {
+      // Means are several SDs above zero in published tables, so redrawing ends quickly; the cap only guards
+      // against a hostile user table.
+      int tries = 0;
+      do {
+        value = rng.normal(e.mean_mm, *e.sd_mm);
+      } while (!(value > 0.0) && ++tries < 1000);
+      if (!(value > 0.0)) value = e.mean_mm;
+    }
+    e.mean_mm = value;
+    e.source += " (sampled)";
   }
   return out;
 }

@@ -23,6 +23,7 @@
 /// standard deviations; no offset that the table does not give is ever invented.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -122,6 +123,12 @@ TissueDepths select_tissue_depths(const TissueDepthTable& table, const TissueDep
 /// Every entry's mean moved by k standard deviations (mean + k SD). Throws InputError naming the site when an
 /// entry has no SD or the result is not positive. The variant and sources record the offset.
 TissueDepths offset_by_sd(const TissueDepths& depths, double k);
+
+/// One member of an ensemble of plausible depths (for showing a reconstruction's uncertainty): each site's depth
+/// drawn from the normal distribution of its mean and SD, truncated to positive depths by redrawing. Draws come
+/// from RandomStream(seed, member), sites in table order, so a member is reproducible and independent of thread
+/// count. The variant records seed and member. Throws InputError naming the site when an entry has no SD.
+TissueDepths sample_tissue_depths(const TissueDepths& depths, std::uint64_t seed, std::uint64_t member);
 
 /// The paper's three builds for one group.
 struct BuildVariants {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 
@@ -227,4 +229,34 @@ TEST(TissueDepthTable, OffsetBySdNeedsSds) {
   const TissueDepths rhine =
       select_tissue_depths(built_in_tissue_depth_table("rhine_1983_sw_native_american_female_normal"));
   EXPECT_THROW(offset_by_sd(rhine, 1.0), InputError);
+}
+
+TEST(TissueDepthTable, SampledDepthsFollowTheTablesMeansAndSds) {
+  const TissueDepths ttable = select_tissue_depths(built_in_tissue_depth_table("ttable_2023"));
+  const TissueDepths a = sample_tissue_depths(ttable, 42, 3);
+  const TissueDepths b = sample_tissue_depths(ttable, 42, 3);
+  const TissueDepths c = sample_tissue_depths(ttable, 42, 4);
+  bool differs = false;
+  for (std::size_t i = 0; i < a.entries.size(); ++i) {
+    EXPECT_EQ(a.entries[i].mean_mm, b.entries[i].mean_mm);
+    differs = differs || a.entries[i].mean_mm != c.entries[i].mean_mm;
+  }
+  EXPECT_TRUE(differs);
+  constexpr int members = 4000;
+  double sum = 0.0, sum2 = 0.0, rhi_min = 1e9;
+  for (int m = 0; m < members; ++m) {
+    const TissueDepths s = sample_tissue_depths(ttable, 7, static_cast<std::uint64_t>(m));
+    const double g = s.find_site("g")->mean_mm;  // 5.5 +- 1: truncation at 0 is negligible
+    sum += g;
+    sum2 += g * g;
+    rhi_min = std::min(rhi_min, s.find_site("rhi")->mean_mm);
+  }
+  const double mean = sum / members;
+  const double sd = std::sqrt(sum2 / members - mean * mean);
+  EXPECT_NEAR(mean, 5.5, 3.0 * 1.0 / std::sqrt(double(members)));
+  EXPECT_NEAR(sd, 1.0, 0.05);
+  EXPECT_GT(rhi_min, 0.0);
+  const TissueDepths rhine =
+      select_tissue_depths(built_in_tissue_depth_table("rhine_1983_sw_native_american_female_normal"));
+  EXPECT_THROW(sample_tissue_depths(rhine, 1, 0), InputError);
 }
