@@ -8,6 +8,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "geometry/primitives.hpp"
 #include "skin/skin_map_baker.hpp"
+#include "texture/uv_bake.hpp"
 
 using namespace forensim;
 
@@ -48,6 +49,28 @@ TEST(SkinMapBaker, InterpolatesVertexValuesAtTexels) {
       EXPECT_NEAR(rgb.at(x, y, 0), 0.3 + 0.4 * std::min(u, v), 1e-5) << x << " " << y;
       EXPECT_NEAR(rgb.at(x, y, 1), 0.2, 1e-6);
     }
+}
+
+TEST(SkinMapBaker, GutterMatchesTheTextureBaker) {
+  TriMesh q = quad();
+  q.uvs = {{0.2, 0.25}, {0.8, 0.25}, {0.8, 0.7}, {0.2, 0.7}};  // a gutter all around the chart
+  const std::vector<Vec4f> colours = {
+      {0.1f, 0.2f, 0.3f, 1}, {0.9f, 0.2f, 0.3f, 1}, {0.5f, 0.8f, 0.3f, 1}, {0.1f, 0.2f, 0.7f, 1}};
+  const SkinMapBaker baker(q, 64, 5);
+  EXPECT_GT(baker.gutter_texels(), 0u);
+  const Image ours = baker.bake_colours(colours);
+  const UvRaster raster = rasterize_uv(q, 64, 64);
+  const Image reference = bake(
+      raster, 3,
+      [&](const UvTexel& t) {
+        Vec4f c = Vec4f::Zero();
+        for (int k = 0; k < 3; ++k)
+          c += static_cast<float>(t.barycentric[k]) * colours[static_cast<std::size_t>(q.triangles[t.triangle][k])];
+        return c;
+      },
+      5);
+  ASSERT_EQ(ours.data().size(), reference.data().size());
+  for (std::size_t i = 0; i < ours.data().size(); ++i) ASSERT_NEAR(ours.data()[i], reference.data()[i], 1e-6f) << i;
 }
 
 TEST(SkinMapBaker, RejectsMeshesWithoutUvsAndWrongSizes) {
