@@ -15,9 +15,10 @@
 /// - biliverdin and bilirubin: band models (Gaussian bands at the reported maxima and peak molar
 ///   absorptivities) as used in bruise spectroscopy: L. L. Randeberg et al., "A novel approach to age
 ///   determination of traumatic injuries by reflectance spectroscopy", Lasers Surg. Med. 38 (2006) 277-289,
-///   and L. Vidovic, M. Milanic, B. Majaron (ref. 37 of Frerichs et al. 2020); bilirubin peak 455 nm,
-///   55 600 M^-1 cm^-1 (S. Prahl, OMLC, bilirubin in chloroform); biliverdin bands 377 nm (about 50 000) and
-///   665 nm (about 14 000 M^-1 cm^-1);
+///   and L. Vidovic, M. Milanic, B. Majaron (ref. 37 of Frerichs et al. 2020); bilirubin one band near
+///   450-460 nm of about 55 600 M^-1 cm^-1 (S. Prahl, OMLC, bilirubin in chloroform), modelled at 455 nm with
+///   a 33 nm standard deviation; biliverdin bands near 377 nm (about 50 000) and 665 nm (about 14 000 M^-1 cm^-1).
+///   These three are approximations of the published curves at their key values, not measured tables;
 /// - melanin, dermis baseline and dermis scattering: S. L. Jacques, "Skin optics" (OMLC News, 1998) and
 ///   "Optical properties of biological tissues: a review", Phys. Med. Biol. 58 (2013) R37-R61;
 /// - diffuse reflectance: the dipole diffusion approximation of H. W. Jensen, S. R. Marschner, M. Levoy and

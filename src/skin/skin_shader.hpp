@@ -23,10 +23,12 @@ namespace forensim {
 
 /// Settings of the shader. Dimensionless unless the name says otherwise.
 struct SkinShadingSettings {
-  DermisLutSettings lut;             ///< the generated dermis look-up texture
-  double drying_boost = 0.25;        ///< k of eq. 37: relative rise of the saturation on full drying
-  double oxygen_decay_hours = 12.0;  ///< tau_O2: e-folding time of the blood's oxygen after the start state
-  double epidermis_mm = 0.08;        ///< epidermis thickness for the melanin absorption (chromophores.hpp)
+  DermisLutSettings lut;       ///< the generated dermis look-up texture
+  double drying_boost = 0.25;  ///< k of eq. 37: relative rise of the saturation on full drying
+  /// tau_O2: e-folding time of the blood's oxygen after the start state. Times are counted from the livor
+  /// start state (fixed hypostasis, some 8 to 12 hours after death), which is time 0 of the drying run.
+  double oxygen_decay_hours = 12.0;
+  double epidermis_mm = 0.08;  ///< epidermis thickness for the melanin absorption (chromophores.hpp)
 };
 
 /// Fixed per-vertex skin data (#V entries each): the epidermis reflectance map and the two-channel melanin map
