@@ -18,8 +18,6 @@ const SkinShadingSettings& checked(const SkinShadingSettings& s) {
                 "must be in [0, 4]");
   require_input(std::isfinite(s.oxygen_decay_hours) && s.oxygen_decay_hours > 0.0, src, "oxygen_decay_hours",
                 "must be positive");
-  require_input(std::isfinite(s.epidermis_mm) && s.epidermis_mm > 0.0 && s.epidermis_mm <= 2.0, src, "epidermis_mm",
-                "must be in (0, 2]");
   return s;
 }
 

@@ -28,7 +28,6 @@ struct SkinShadingSettings {
   /// tau_O2: e-folding time of the blood's oxygen after the start state. Times are counted from the livor
   /// start state (fixed hypostasis, some 8 to 12 hours after death), which is time 0 of the drying run.
   double oxygen_decay_hours = 12.0;
-  double epidermis_mm = 0.08;  ///< epidermis thickness for the melanin absorption (chromophores.hpp)
 };
 
 /// Fixed per-vertex skin data (#V entries each): the epidermis reflectance map and the two-channel melanin map
@@ -42,10 +41,11 @@ struct SkinLayers {
   std::size_t size() const { return vertex_epidermis.size(); }
 };
 
-/// Skin layers from per-vertex maps: `epidermis` (#V linear RGB) and `melanin_hydrated` (#V fractions); the
-/// dehydrated channel is `dehydrated_factor` times the hydrated one (clamped to 1): dried epidermis absorbs
-/// more, which the paper's second melanin channel encodes (4 gives the blackish brown of fully dried skin). Throws
-/// InputError for sizes or values out of range.
+/// Skin layers from per-vertex maps: `epidermis` (#V linear RGB) and `melanin_hydrated` (#V melanosome
+/// fractions). The dehydrated channel is `dehydrated_factor` times the hydrated one (clamped to 1): dried
+/// epidermis absorbs more, which the paper's second melanin channel encodes (4 gives the blackish brown of
+/// fully dried skin). `epidermis_mm` is the thickness of the layer the melanin lies in (melanin_absorption()).
+/// Throws InputError for sizes or values out of range.
 SkinLayers make_skin_layers(const std::vector<Vec3>& epidermis, const std::vector<double>& melanin_hydrated,
                             double dehydrated_factor = 4.0, double epidermis_mm = 0.08);
 /// Uniform skin layers for `vertices` vertices: a light skin (L_e = (0.85, 0.56, 0.43), melanin 0.03).
