@@ -181,6 +181,11 @@ try {
   const frameLabel = await page.textContent('#frame-label');
   check(/day 2/.test(frameLabel), `frame time in days: "${frameLabel}"`);
   await shot('desiccation.png');
+  await page.click('#cut-on');
+  await page.locator('#cut-at').fill('300');
+  await settle();
+  const cutOpen = await canvasColour(0.5, 0.5, 20);
+  check(distance(cutOpen, dry) > 0.005, `the cutting plane changes the view (${distance(cutOpen, dry).toFixed(3)})`);
 
   // 5. The desiccation start form and the editor's default mesh load without errors.
   await open('#/desiccation');

@@ -4,7 +4,7 @@
 
 import * as THREE from 'three';
 import { describeRun, followJob, frameSurface, listRuns, startJob } from './api.js';
-import { cameraControls } from './stage.js';
+import { cameraControls, cutControls } from './stage.js';
 import { steppedTimeline } from './timeline_control.js';
 import { formatDays } from './time_units.js';
 import { escapeHtml, html } from './util.js';
@@ -68,7 +68,7 @@ async function showRun(ctx, path, job) {
   ctx.stage.add(mesh);
   ctx.stage.add(ghost);
   controls.querySelector('#ghost').onchange = (e) => { ghost.visible = e.target.checked; };
-  let shown = 0;
+  let shown = 0, cut = null;
   const draw = async (i) => {
     const frame = await load(i);
     const field = select.value;
@@ -77,6 +77,7 @@ async function showRun(ctx, path, job) {
     controls.querySelector('#range-hi').textContent = range[1].toPrecision(3);
     mesh.geometry.dispose();
     mesh.geometry = geometryOf(frame, frame.positions, field, range);
+    if (cut) cut.apply();
     shown = i;
     document.body.dataset.frame = String(i);
     ctx.overlay.textContent = formatDays(run.frames[i].time_days);
@@ -90,6 +91,7 @@ async function showRun(ctx, path, job) {
   await timeline.go(0);
   ctx.stage.fit(mesh, 'oblique');
   cameraControls(ctx.panel, ctx.stage, () => `${path.replace(/\//g, '_')}_frame${shown}.png`);
+  cut = cutControls(ctx.panel, ctx.stage);
   window.forensim.frames = { count: () => run.frames.length, go: (i) => timeline.go(i) };
   // While its job runs, new frames appear as the run writes them.
   if (job && job.state === 'running') {

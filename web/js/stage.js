@@ -141,3 +141,32 @@ export function cameraControls(parent, stage, screenshotName) {
   box.appendChild(row);
   parent.appendChild(box);
 }
+
+/// A cutting plane across the content: on/off, axis and position within the bounding box.
+export function cutControls(parent, stage) {
+  const box = document.createElement('div');
+  box.innerHTML = `<h2>Cutting plane</h2><label><input type="checkbox" id="cut-on"> cut along
+    <select id="cut-axis"><option value="0">x</option><option value="1">y</option><option value="2" selected>z</option>
+    </select></label><input type="range" id="cut-at" min="0" max="1000" value="500">`;
+  parent.appendChild(box);
+  const on = box.querySelector('#cut-on'), axis = box.querySelector('#cut-axis'), at = box.querySelector('#cut-at');
+  const plane = new THREE.Plane();
+  stage.renderer.localClippingEnabled = true;
+  const apply = () => {
+    const k = Number(axis.value);
+    const lo = stage.box.min.getComponent(k), hi = stage.box.max.getComponent(k);
+    const normal = new THREE.Vector3().setComponent(k, -1);
+    plane.set(normal, lo + (hi - lo) * (at.value / 1000));  // keeps the side below the cut
+    stage.content.traverse((o) => {
+      if (!o.material) return;
+      for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
+        const want = on.checked ? [plane] : [];
+        if (m.clippingPlanes?.length !== want.length) m.needsUpdate = true;
+        m.clippingPlanes = want;
+        m.clipShadows = true;
+      }
+    });
+  };
+  on.onchange = axis.onchange = at.oninput = apply;
+  return { apply };
+}

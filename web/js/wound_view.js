@@ -4,7 +4,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { describeRun, fileUrl, followJob, startJob } from './api.js';
-import { cameraControls } from './stage.js';
+import { cameraControls, cutControls } from './stage.js';
 import { continuousTimeline } from './timeline_control.js';
 import { WoundTimeline } from './wound_timeline.js';
 import { escapeHtml, html } from './util.js';
@@ -59,6 +59,7 @@ export async function showWoundRun(ctx, path) {
   ctx.stage.fit(object);
   showTimeline(ctx, object, tl, `Wound run ${path}`);
   cameraControls(ctx.panel, ctx.stage, () => `${path.replace(/\//g, '_')}_${Math.round(tl.time)}s.png`);
+  cutControls(ctx.panel, ctx.stage);
   ctx.ready();
 }
 
