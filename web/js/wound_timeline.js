@@ -56,8 +56,9 @@ export function bracket(timeline, keys, t) {
 }
 
 export class WoundTimeline {
-  /// `run`: /api/run's description of a wound run.
-  static async load(run) {
+  /// `run`: /api/run's description of a wound run. With `renderer`, every map is uploaded at once, so the
+  /// first pass of the slider over a key position does not stall on its upload.
+  static async load(run, renderer = null) {
     const tl = new WoundTimeline();
     tl.run = run;
     tl.timeline = run.timeline;
@@ -71,6 +72,7 @@ export class WoundTimeline {
       ]);
       return { color, roughness, normal };
     }));
+    if (renderer) for (const m of tl.maps) for (const t of Object.values(m)) renderer.initTexture(t);
     tl.material = tl.makeMaterial();
     tl.setTime(0);
     return tl;

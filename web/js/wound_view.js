@@ -49,17 +49,34 @@ function showTimeline(ctx, object, tl, title) {
   return control;
 }
 
+/// The run's map set and GLBs as download links (the export of the map set).
+function exportList(parent, path, files) {
+  const box = html(parent, '<h2>Export</h2>');
+  const details = document.createElement('details');
+  details.innerHTML = '<summary>maps and GLB</summary>';
+  for (const f of files.filter((x) => /^maps\/|\.glb$|^timeline\.json$/.test(x.path))) {
+    const a = document.createElement('a');
+    a.href = fileUrl(path + '/' + f.path);
+    a.download = f.path.split('/').pop();
+    a.textContent = `${f.path} (${(f.bytes / 1024).toFixed(0)} KiB)`;
+    a.style.display = 'block';
+    details.appendChild(a);
+  }
+  box.appendChild(details);
+}
+
 export async function showWoundRun(ctx, path) {
   const run = await describeRun(path);
   if (!run.timeline) throw new Error(`run '${path}' has no timeline.json (not a wound run)`);
   const glb = run.files.map((f) => f.path).find((p) => /^wound_.*\.glb$/.test(p));
   if (!glb) throw new Error(`run '${path}' has no wound GLB`);
-  const [object, tl] = await Promise.all([loadGlb(fileUrl(path + '/' + glb)), WoundTimeline.load(run)]);
+  const [object, tl] = await Promise.all([loadGlb(fileUrl(path + '/' + glb)), WoundTimeline.load(run, ctx.stage.renderer)]);
   ctx.stage.add(object);
   ctx.stage.fit(object);
   showTimeline(ctx, object, tl, `Wound run ${path}`);
   cameraControls(ctx.panel, ctx.stage, () => `${path.replace(/\//g, '_')}_${Math.round(tl.time)}s.png`);
   cutControls(ctx.panel, ctx.stage);
+  exportList(ctx.panel, path, run.files);
   ctx.ready();
 }
 
@@ -172,7 +189,7 @@ export async function showWoundEditor(ctx, params) {
         job.textContent = `${j.state} ${(100 * (j.progress.fraction || 0)).toFixed(0)} % (${j.seconds.toFixed(1)} s)`;
       });
       if (end.state !== 'succeeded') throw new Error(end.error || end.state);
-      const tl = await WoundTimeline.load(await describeRun(output));
+      const tl = await WoundTimeline.load(await describeRun(output), ctx.stage.renderer);
       marks.visible = false;
       painting = false;
       $('paint').classList.remove('on');
