@@ -78,6 +78,8 @@ try {
            '--use-angle=swiftshader'],
   });
   const page = await browser.newPage({ viewport: { width: 960, height: 600 } });
+  page.setDefaultTimeout(120000);  // loaded CI machines draw software WebGL slowly
+  page.setDefaultNavigationTimeout(120000);
   const consoleErrors = [];
   page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
   page.on('pageerror', (e) => consoleErrors.push(String(e)));
