@@ -19,6 +19,7 @@ build: deps
 demo: build
 	./build/release/bin/forensim demo --out out/demo
 	@echo "forensim demo: open out/demo/report.html"
+	@echo "forensim demo: browse and edit its runs with  ./build/release/bin/forensim serve out/demo  (http://127.0.0.1:8080/)"
 
 test: build
 	ctest --preset release

@@ -26,6 +26,10 @@ find_package(OpenVDB REQUIRED)                              # OpenVDB::openvdb
 # stb: Debian builds the implementations into libstb; headers live in /usr/include/stb.
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)         # PkgConfig::STB
 
+# cpp-httplib (forensim serve): Debian builds it as a library; its pkg-config flags select the features it
+# was built with (they change the classes' layout, so they must match).
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # PkgConfig::HTTPLIB
+
 # SuiteSparse 5 (CHOLMOD) has no CMake config; find the libraries directly. OpenBLAS provides BLAS/LAPACK.
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
 find_library(CHOLMOD_LIBRARY cholmod REQUIRED)

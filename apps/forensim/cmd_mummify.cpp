@@ -21,68 +21,13 @@
 #include "desiccation/desiccation_pictures.hpp"
 #include "desiccation/desiccation_sim.hpp"
 #include "image/png_io.hpp"
+#include "mummify_job.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
 
 namespace forensim::cli {
 namespace {
-
-struct MummifyArgs {
-  std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
-  double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
-  int frames = 6, picture_size = 480;
-  bool resume = false, no_pictures = false;
-  CLI::App* sub = nullptr;
-  bool given(const std::string& option) const { return sub->get_option(option)->count() > 0; }
-};
-
-/// A run's description: the job file (or defaults), with command-line options taking precedence.
-struct MummifyJob {
-  std::string phantom, size, model;
-  double days = 0.0, step_hours = 0.0;
-  int frames = 0;
-  long long deform_every = 4;  ///< quasi-static shape solved every this many steps (and at frames)
-  DesiccationSettings settings;
-};
-
-MummifyJob load_job(const MummifyArgs& a, JobDocument& doc) {
-  JobNode root = doc.root();
-  MummifyJob job;
-  root.get_integer("version", 1, 1, 1);
-  JobNode body = root.child("body");
-  job.phantom = a.given("--phantom") ? a.phantom : body.get_choice("phantom", a.phantom, {"arm", "head"});
-  job.size = a.given("--size") ? a.size : body.get_choice("size", a.size, {"small", "paper", "fine"});
-  job.model = a.given("--model") ? a.model : body.get<std::string>("model", a.model);
-  job.days = a.given("--days") ? a.days : root.get_number("days", a.days, 0.01, 3650.0);
-  job.frames = a.given("--frames") ? a.frames : static_cast<int>(root.get_integer("frames", a.frames, 1, 1000));
-  job.step_hours = a.given("--step-hours") ? a.step_hours : root.get_number("step_hours", a.step_hours, 0.01, 240.0);
-  JobNode env = root.child("environment");
-  DryingEnvironment& e = job.settings.environment;
-  e.air_temperature_c =
-      a.given("--temperature") ? a.temperature : env.get_number("temperature_c", a.temperature, -40, 80);
-  e.relative_humidity =
-      0.01 * (a.given("--humidity") ? a.humidity : env.get_number("humidity_percent", a.humidity, 0.0, 99.0));
-  e.air_speed_m_per_s = a.given("--wind") ? a.wind : env.get_number("wind_m_per_s", a.wind, 0.0, 50.0);
-  e.body_diameter_m = env.get_number("body_diameter_m", e.body_diameter_m, 0.005, 2.0);
-  e.skin_cover = env.get_number("skin_cover", e.skin_cover, 0.0, 1.0);
-  e.on_ground = env.get<bool>("on_ground", e.on_ground);
-  e.ground_height_mm = env.get_number("ground_height_mm", e.ground_height_mm, -1e5, 1e5);
-  JobNode tissue = root.child("tissue");
-  TissueDrying& t = job.settings.tissue;
-  t.initial_moisture = dry_basis_moisture(
-      0.01 * tissue.get_number("initial_water_percent", 100.0 * wet_basis_moisture(t.initial_moisture), 1.0, 95.0));
-  t.reference_diffusivity_m2_per_s =
-      tissue.get_number("diffusivity_m2_per_s", t.reference_diffusivity_m2_per_s, 1e-13, 1e-7);
-  t.diffusivity_drying_exponent =
-      tissue.get_number("diffusivity_drying_exponent", t.diffusivity_drying_exponent, 0.0, 20.0);
-  t.shrinkage_efficiency = tissue.get_number("shrinkage_efficiency", t.shrinkage_efficiency, 0.0, 1.0);
-  t.skin_permeance_m_per_s = tissue.get_number("skin_permeance_m_per_s", t.skin_permeance_m_per_s, 1e-9, 10.0);
-  job.settings.deform = root.get<bool>("deform", true);
-  job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
-  doc.check_all_used();
-  return job;
-}
 
 /// One row of the curves: day, totals, per-part water/mass/volume.
 struct CurveRow {
@@ -229,7 +174,8 @@ std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const Desiccat
 int run_mummify(const MummifyArgs& a) {
   Stopwatch watch;
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
-  const MummifyJob job = load_job(a, doc);
+  const MummifyJob job = read_mummify_job(doc.root(), a);
+  doc.check_all_used();
   RunFolder run(a.out, "mummify");
   run.set_job(doc.resolved());
 

@@ -1,0 +1,81 @@
+// The mummify job loader (shared by the CLI and the server) and the server's "mummify" job kind.
+
+#include "mummify_job.hpp"
+
+#include "core/atomic_file.hpp"
+#include "desiccation/material_laws.hpp"
+#include "server/api_error.hpp"
+#include "server/served_path.hpp"
+
+namespace forensim::cli {
+
+MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
+  MummifyJob job;
+  root.get_integer("version", 1, 1, 1);
+  JobNode body = root.child("body");
+  job.phantom = a.given("--phantom") ? a.phantom : body.get_choice("phantom", a.phantom, {"arm", "head"});
+  job.size = a.given("--size") ? a.size : body.get_choice("size", a.size, {"small", "paper", "fine"});
+  job.model = a.given("--model") ? a.model : body.get<std::string>("model", a.model);
+  job.days = a.given("--days") ? a.days : root.get_number("days", a.days, 0.01, 3650.0);
+  job.frames = a.given("--frames") ? a.frames : static_cast<int>(root.get_integer("frames", a.frames, 1, 1000));
+  job.step_hours = a.given("--step-hours") ? a.step_hours : root.get_number("step_hours", a.step_hours, 0.01, 240.0);
+  JobNode env = root.child("environment");
+  DryingEnvironment& e = job.settings.environment;
+  e.air_temperature_c =
+      a.given("--temperature") ? a.temperature : env.get_number("temperature_c", a.temperature, -40, 80);
+  e.relative_humidity =
+      0.01 * (a.given("--humidity") ? a.humidity : env.get_number("humidity_percent", a.humidity, 0.0, 99.0));
+  e.air_speed_m_per_s = a.given("--wind") ? a.wind : env.get_number("wind_m_per_s", a.wind, 0.0, 50.0);
+  e.body_diameter_m = env.get_number("body_diameter_m", e.body_diameter_m, 0.005, 2.0);
+  e.skin_cover = env.get_number("skin_cover", e.skin_cover, 0.0, 1.0);
+  e.on_ground = env.get<bool>("on_ground", e.on_ground);
+  e.ground_height_mm = env.get_number("ground_height_mm", e.ground_height_mm, -1e5, 1e5);
+  JobNode tissue = root.child("tissue");
+  TissueDrying& t = job.settings.tissue;
+  t.initial_moisture = dry_basis_moisture(
+      0.01 * tissue.get_number("initial_water_percent", 100.0 * wet_basis_moisture(t.initial_moisture), 1.0, 95.0));
+  t.reference_diffusivity_m2_per_s =
+      tissue.get_number("diffusivity_m2_per_s", t.reference_diffusivity_m2_per_s, 1e-13, 1e-7);
+  t.diffusivity_drying_exponent =
+      tissue.get_number("diffusivity_drying_exponent", t.diffusivity_drying_exponent, 0.0, 20.0);
+  t.shrinkage_efficiency = tissue.get_number("shrinkage_efficiency", t.shrinkage_efficiency, 0.0, 1.0);
+  t.skin_permeance_m_per_s = tissue.get_number("skin_permeance_m_per_s", t.skin_permeance_m_per_s, 1e-9, 10.0);
+  job.settings.deform = root.get<bool>("deform", true);
+  job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
+  return job;
+}
+
+JobKind mummify_job_kind() {
+  JobKind kind;
+  kind.name = "mummify";
+  kind.prepare = [](const JobNode& request, const JobContext& context) {
+    const bool pictures = request.get<bool>("pictures", false);
+    const long long picture_size = request.get_integer("picture_size", 480, 64, 2048);
+    const MummifyArgs defaults;
+    const MummifyJob job = read_mummify_job(request.child("job"), defaults);
+    nlohmann::json file = context.request.contains("job") ? context.request["job"] : nlohmann::json::object();
+    if (!job.model.empty()) {
+      // A body model folder is named relative to the served folder and must stay inside it.
+      const ServedPath p = resolve_served_path(context.served_root, job.model);
+      if (p.problem != ServedPathProblem::none) {
+        throw ApiError(p.problem == ServedPathProblem::outside ? 403 : 400, p.message, "/job/body/model");
+      }
+      file["body"]["model"] = p.path.string();
+    }
+    const std::filesystem::path job_file = context.output_folder / "job.json";
+    write_file_atomic(job_file, file.dump(2) + "\n");
+    PreparedJob out;
+    out.arguments = {"mummify",        job_file.string(),           "-o", context.output_folder.string(),
+                     "--picture-size", std::to_string(picture_size)};
+    if (!pictures) out.arguments.push_back("--no-pictures");
+    out.summary = {{"body", job.model.empty() ? job.phantom + " (" + job.size + ")" : job.model},
+                   {"days", job.days},
+                   {"frames", job.frames},
+                   {"temperature_c", job.settings.environment.air_temperature_c},
+                   {"humidity_percent", 100.0 * job.settings.environment.relative_humidity}};
+    return out;
+  };
+  return kind;
+}
+
+}  // namespace forensim::cli

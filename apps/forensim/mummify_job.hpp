@@ -1,0 +1,49 @@
+#pragma once
+/// The mummify job file (version 1) and its loader, shared by `forensim mummify` and the server's "mummify" job
+/// kind so both accept exactly the same keys and ranges:
+///   {"version": 1, "body": {"phantom": "arm"|"head", "size": "small"|"paper"|"fine", "model": folder},
+///    "days", "frames", "step_hours", "deform", "deform_every_steps",
+///    "environment": {"temperature_c", "humidity_percent", "wind_m_per_s", "body_diameter_m", "skin_cover",
+///                    "on_ground", "ground_height_mm"},
+///    "tissue": {"initial_water_percent", "diffusivity_m2_per_s", "diffusivity_drying_exponent",
+///               "shrinkage_efficiency", "skin_permeance_m_per_s"}}
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "core/job.hpp"
+#include "desiccation/desiccation_sim.hpp"
+#include "server/job_manager.hpp"
+
+namespace forensim::cli {
+
+/// Command-line values of `forensim mummify`; those given on the command line win over the job file's.
+struct MummifyArgs {
+  std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
+  double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
+  int frames = 6, picture_size = 480;
+  bool resume = false, no_pictures = false;
+  CLI::App* sub = nullptr;  ///< null: nothing was given on a command line (the server)
+  bool given(const std::string& option) const { return sub != nullptr && sub->get_option(option)->count() > 0; }
+};
+
+/// A run's description: the job file (or defaults), with command-line options taking precedence.
+struct MummifyJob {
+  std::string phantom, size, model;
+  double days = 0.0, step_hours = 0.0;
+  int frames = 0;
+  long long deform_every = 4;  ///< quasi-static shape solved every this many steps (and at frames)
+  DesiccationSettings settings;
+};
+
+/// Reads a mummify job from `root` (a job file's root, or the "job" object of a server request). Throws
+/// JobError naming the key for wrong types and values out of range. Does not call check_all_used().
+MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a);
+
+/// The server's "mummify" job kind. Request (beside "kind" and "output"): "job" (the job file above; a
+/// "body/model" folder must lie inside the served folder), "pictures" (render the moisture and shrinkage
+/// pictures at the end; default false), "picture_size" (64..2048, default 480).
+JobKind mummify_job_kind();
+
+}  // namespace forensim::cli

@@ -1,0 +1,172 @@
+// The 3D stage every view draws on: a three.js renderer on the page's canvas, orbit controls, lights,
+// camera presets around the object's bounding box (forensim's frame is z-up), screenshot export and a
+// frame-rate meter.
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const PRESETS = {
+  front: new THREE.Vector3(0, -1, 0.15),
+  back: new THREE.Vector3(0, 1, 0.15),
+  left: new THREE.Vector3(-1, 0, 0.15),
+  right: new THREE.Vector3(1, 0, 0.15),
+  top: new THREE.Vector3(0.001, -0.001, 1),
+  oblique: new THREE.Vector3(0.6, -0.8, 0.5),
+};
+
+export class Stage {
+  constructor(canvas) {
+    this.canvas = canvas;
+    // preserveDrawingBuffer: screenshots read the canvas after the frame was shown.
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.renderer.outputColorSpace = THREE.SRGBColorSpace;
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x30343a);
+    this.camera = new THREE.PerspectiveCamera(30, 1, 0.001, 1000);
+    this.camera.up.set(0, 0, 1);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.enableDamping = false;
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.2));
+    const key = new THREE.DirectionalLight(0xffffff, 2.0);
+    key.position.set(1, -2, 3);
+    this.camera.add(key);
+    this.scene.add(this.camera);
+    this.content = new THREE.Group();
+    this.scene.add(this.content);
+    this.box = new THREE.Box3(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+    this.frameTimes = [];
+    this.onFrame = null;
+    this.running = true;
+    new ResizeObserver(() => this.resize()).observe(canvas);
+    this.resize();
+    const loop = (now) => {
+      if (!this.running) return;
+      this.frameTimes.push(now);
+      if (this.frameTimes.length > 120) this.frameTimes.shift();
+      if (this.onFrame) this.onFrame(now);
+      this.controls.update();
+      this.renderer.render(this.scene, this.camera);
+      requestAnimationFrame(loop);
+    };
+    requestAnimationFrame(loop);
+  }
+
+  resize() {
+    const w = Math.max(1, this.canvas.clientWidth), h = Math.max(1, this.canvas.clientHeight);
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+  }
+
+  /// Removes what the previous view showed (disposing its GPU resources).
+  clear() {
+    this.onFrame = null;
+    for (const child of [...this.content.children]) {
+      this.content.remove(child);
+      child.traverse((o) => {
+        if (o.geometry) o.geometry.dispose();
+        if (o.material) (Array.isArray(o.material) ? o.material : [o.material]).forEach((m) => m.dispose());
+      });
+    }
+  }
+
+  add(object) {
+    this.content.add(object);
+  }
+
+  /// Frames the camera on `object` (or the whole content) from a preset direction.
+  fit(object = this.content, preset = 'oblique') {
+    this.box = new THREE.Box3().setFromObject(object);
+    if (this.box.isEmpty()) return;
+    this.preset(preset);
+  }
+
+  preset(name) {
+    const dir = (PRESETS[name] || PRESETS.oblique).clone().normalize();
+    const centre = this.box.getCenter(new THREE.Vector3());
+    const radius = this.box.getSize(new THREE.Vector3()).length() / 2;
+    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 1.05;
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 10;
+    this.camera.updateProjectionMatrix();
+    this.camera.position.copy(centre).addScaledVector(dir, distance);
+    this.controls.target.copy(centre);
+    this.controls.update();
+  }
+
+  static presetNames() {
+    return Object.keys(PRESETS);
+  }
+
+  /// Frames per second over the last frames drawn.
+  fps() {
+    const t = this.frameTimes;
+    if (t.length < 2) return 0;
+    return (1000 * (t.length - 1)) / (t[t.length - 1] - t[0]);
+  }
+
+  /// Saves what the canvas shows as a PNG download named `name`.
+  screenshot(name = 'forensim.png') {
+    this.renderer.render(this.scene, this.camera);
+    const url = this.canvas.toDataURL('image/png');
+    const a = document.createElement('a');
+    a.href = url;
+    a.download = name;
+    document.body.appendChild(a);
+    a.click();
+    a.remove();
+    return url;
+  }
+}
+
+/// Buttons for the camera presets and a screenshot, appended to `parent`.
+export function cameraControls(parent, stage, screenshotName) {
+  const box = document.createElement('div');
+  box.innerHTML = '<h2>Camera</h2>';
+  const row = document.createElement('div');
+  row.className = 'row';
+  for (const name of Stage.presetNames()) {
+    const b = document.createElement('button');
+    b.textContent = name;
+    b.dataset.preset = name;
+    b.onclick = () => stage.preset(name);
+    row.appendChild(b);
+  }
+  const shot = document.createElement('button');
+  shot.textContent = 'Screenshot';
+  shot.id = 'screenshot';
+  shot.onclick = () => stage.screenshot(typeof screenshotName === 'function' ? screenshotName() : screenshotName);
+  row.appendChild(shot);
+  box.appendChild(row);
+  parent.appendChild(box);
+}
+
+/// A cutting plane across the content: on/off, axis and position within the bounding box.
+export function cutControls(parent, stage) {
+  const box = document.createElement('div');
+  box.innerHTML = `<h2>Cutting plane</h2><label><input type="checkbox" id="cut-on"> cut along
+    <select id="cut-axis"><option value="0">x</option><option value="1">y</option><option value="2" selected>z</option>
+    </select></label><input type="range" id="cut-at" min="0" max="1000" value="500">`;
+  parent.appendChild(box);
+  const on = box.querySelector('#cut-on'), axis = box.querySelector('#cut-axis'), at = box.querySelector('#cut-at');
+  const plane = new THREE.Plane();
+  stage.renderer.localClippingEnabled = true;
+  const apply = () => {
+    const k = Number(axis.value);
+    const lo = stage.box.min.getComponent(k), hi = stage.box.max.getComponent(k);
+    const normal = new THREE.Vector3().setComponent(k, -1);
+    plane.set(normal, lo + (hi - lo) * (at.value / 1000));  // keeps the side below the cut
+    stage.content.traverse((o) => {
+      if (!o.material) return;
+      for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
+        const want = on.checked ? [plane] : [];
+        if (m.clippingPlanes?.length !== want.length) m.needsUpdate = true;
+        m.clippingPlanes = want;
+        m.clipShadows = true;
+      }
+    });
+  };
+  on.onchange = axis.onchange = at.oninput = apply;
+  return { apply };
+}
