@@ -33,6 +33,7 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
       source, "", "names, positions and depth vectors differ in number");
   require_input(!skull.triangles.empty(), "target skull", "", "has no triangles");
   skull.validate("target skull");
+  if (m_skull.normals.size() != m_skull.positions.size()) compute_normals(m_skull);
   std::set<int> used;
   for (std::size_t i = 0; i < landmarks.names.size(); ++i) {
     const std::string& name = landmarks.names[i];
@@ -76,8 +77,9 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
       on_template.depth_vectors.push_back(pair.skin - pair.skull);
     }
     const RayCaster template_skull(head.skull), template_skin(head.skin);
-    const InterpolatedLandmarks t = interpolate_landmarks(template_skull, on_template, options.interpolation);
-    const InterpolatedLandmarks s = interpolate_landmarks(*m_skull_rays, m_given, options.interpolation);
+    const InterpolatedLandmarks t =
+        interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
+    const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, options.interpolation);
     const std::vector<Vec3> t_skin = skin_points_along_normals(template_skin, t);
     std::map<std::string, std::size_t> on_target;
     for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
@@ -125,7 +127,7 @@ std::vector<Vec3> TemplateFit::current_targets(InterpolatedLandmarks& record) co
   for (std::size_t i = 0; i < m_given.names.size(); ++i) targets.push_back(m_given.skull[i] + m_given.depth_vectors[i]);
   record = m_result.interpolated;
   if (m_interpolated_names.empty()) return targets;
-  const InterpolatedLandmarks s = interpolate_landmarks(*m_skull_rays, m_given, m_options.interpolation);
+  const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, m_options.interpolation);
   std::map<std::string, std::size_t> on_target;
   for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
   for (std::size_t j = 0; j < m_interpolated_names.size(); ++j) {

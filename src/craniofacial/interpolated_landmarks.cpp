@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "spatial/ray_caster.hpp"
 
 namespace forensim {
@@ -22,24 +23,19 @@ Vec3 facing(const Vec3& normal, const Vec3& direction) {
   return normal.dot(direction) > 0.0 ? Vec3(-normal) : normal;
 }
 
-/// First hit of the ray from outside `origin` along unit `direction`, with the normal averaged over the hits of
-/// four more rays `patch` mm to the sides.
-std::optional<Hit> hit_with_patch(const RayCaster& rays, const Vec3& origin, const Vec3& direction, double t_max,
-                                  double patch) {
-  const auto centre = rays.intersect(origin, direction, 0.0, t_max);
-  if (!centre) return std::nullopt;
-  Vec3 normal = facing(centre->normal, direction);
-  if (patch > 0.0) {
-    const Vec3 t1 = direction.unitOrthogonal();
-    const Vec3 t2 = direction.cross(t1);
-    const Vec3 offsets[4] = {t1, -t1, t2, -t2};
-    for (const Vec3& o : offsets) {
-      const auto h = rays.intersect(origin + patch * o, direction, 0.0, t_max);
-      // Only hits on the same sheet of bone count (not a far wall seen past an edge).
-      if (h && std::abs(h->t - centre->t) < 3.0 * patch) normal += facing(h->normal, direction);
-    }
-  }
-  return Hit{centre->point, normal.normalized()};
+/// First hit of the ray from outside `origin` along unit `direction`, with the skull's vertex normals
+/// interpolated there: each is the area-weighted mean of the face normals around a vertex, so the direction is
+/// a patch average over the vertex's ring and turns with the skull.
+std::optional<Hit> first_hit(const TriMesh& skull, const std::vector<Vec3>& vertex_normals, const RayCaster& rays,
+                             const Vec3& origin, const Vec3& direction, double t_max) {
+  const auto hit = rays.intersect(origin, direction, 0.0, t_max);
+  if (!hit) return std::nullopt;
+  const Tri& t = skull.triangles[static_cast<std::size_t>(hit->triangle)];
+  Vec3 normal = hit->barycentric(0) * vertex_normals[static_cast<std::size_t>(t[0])] +
+                hit->barycentric(1) * vertex_normals[static_cast<std::size_t>(t[1])] +
+                hit->barycentric(2) * vertex_normals[static_cast<std::size_t>(t[2])];
+  if (normal.norm() == 0.0) normal = hit->normal;
+  return Hit{hit->point, facing(normal.normalized(), direction)};
 }
 
 }  // namespace
@@ -51,7 +47,6 @@ std::vector<LandmarkArc> default_mandible_arcs() {
     arcs.push_back({"me", "mmb" + s, 2});
     arcs.push_back({"mmb" + s, "go" + s, 2});
     arcs.push_back({"go" + s, "mr" + s, 1});
-    arcs.push_back({"pg", "mmb" + s, 2});
   }
   return arcs;
 }
@@ -62,7 +57,8 @@ std::vector<Vec3> InterpolatedLandmarks::skin_targets() const {
   return out;
 }
 
-InterpolatedLandmarks interpolate_landmarks(const RayCaster& skull_rays, const LandmarkDepths& landmarks,
+InterpolatedLandmarks interpolate_landmarks(const TriMesh& skull, const RayCaster& skull_rays,
+                                            const LandmarkDepths& landmarks,
                                             const LandmarkInterpolationOptions& options) {
   const char* const source = "landmark interpolation";
   require_input(
@@ -75,8 +71,16 @@ InterpolatedLandmarks interpolate_landmarks(const RayCaster& skull_rays, const L
   require_input(options.cranium_min_elevation_front_deg >= 0.0 && options.cranium_min_elevation_front_deg <= 89.0 &&
                     options.cranium_min_elevation_side_deg >= 0.0 && options.cranium_min_elevation_side_deg <= 89.0,
                 source, "cranium_min_elevation", "must be in [0, 89] degrees");
-  require_input(options.normal_patch_mm >= 0.0 && options.normal_patch_mm <= 20.0, source, "normal_patch_mm",
-                "must be in [0, 20]");
+  require_input(skull_rays.triangle_count() == skull.triangles.size(), source, "skull",
+                "the ray caster was not built from this skull mesh");
+  std::vector<Vec3> vertex_normals = skull.normals;
+  if (vertex_normals.size() != skull.positions.size()) {
+    TriMesh copy;
+    copy.positions = skull.positions;
+    copy.triangles = skull.triangles;
+    compute_normals(copy);
+    vertex_normals = std::move(copy.normals);
+  }
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < landmarks.names.size(); ++i) {
     require_input(std::isfinite(landmarks.skull[i].sum()) && std::isfinite(landmarks.depth_vectors[i].sum()), source,
@@ -131,7 +135,7 @@ InterpolatedLandmarks interpolate_landmarks(const RayCaster& skull_rays, const L
                      std::cos(elevation) * std::sin(azimuth) * half_breadth * lateral +
                      std::sin(elevation) * height * up;
       const Vec3 dir = -e.normalized();
-      return hit_with_patch(skull_rays, origin + 2.0 * e, dir, 2.0 * e.norm(), options.normal_patch_mm);
+      return first_hit(skull, vertex_normals, skull_rays, origin + 2.0 * e, dir, 2.0 * e.norm());
     };
     for (int r = 0; r < options.cranium_rings; ++r) {
       for (int s = 0; s < options.cranium_sectors; ++s) {
@@ -157,11 +161,18 @@ InterpolatedLandmarks interpolate_landmarks(const RayCaster& skull_rays, const L
       const std::size_t a = index[arc.from], b = index[arc.to];
       const double da = landmarks.depth_vectors[a].norm(), db = landmarks.depth_vectors[b].norm();
       require_input(da > 0.0 && db > 0.0, source, "arc " + arc.from + "~" + arc.to, "zero depth vector at an end");
+      // Rays aim at the chord point from the curve through the two landmarks' depth directions, offset by the
+      // landmarks' distance (so the construction scales with the skull): the chord of a curved jaw runs under
+      // or behind the bone, and a ray from that outer curve crosses the bone from outside.
+      const double offset = (landmarks.skull[b] - landmarks.skull[a]).norm();
+      const Vec3 outer_a = landmarks.skull[a] + offset * landmarks.depth_vectors[a] / da;
+      const Vec3 outer_b = landmarks.skull[b] + offset * landmarks.depth_vectors[b] / db;
       for (int k = 1; k <= arc.count; ++k) {
         const double t = static_cast<double>(k) / (arc.count + 1);
         const Vec3 chord = (1.0 - t) * landmarks.skull[a] + t * landmarks.skull[b];
-        const Vec3 n = ((1.0 - t) * landmarks.depth_vectors[a] / da + t * landmarks.depth_vectors[b] / db).normalized();
-        if (const auto h = hit_with_patch(skull_rays, chord + 30.0 * n, -n, 60.0, options.normal_patch_mm)) {
+        const Vec3 origin = (1.0 - t) * outer_a + t * outer_b;
+        const Vec3 dir = (chord - origin).normalized();
+        if (const auto h = first_hit(skull, vertex_normals, skull_rays, origin, dir, 3.0 * offset)) {
           add(arc.from + "~" + arc.to + "_" + std::to_string(k), *h, (1.0 - t) * da + t * db);
         }
       }

@@ -11,10 +11,12 @@
 ///   behind, `cranium_min_elevation_side_deg` at the sides, which keeps off the temporal muscles), meet the
 ///   outer skull; the depth is the inverse-distance-squared mean (in normalised frame coordinates) of the depths
 ///   at g, v and op;
-/// - mandible arcs: points between two landmarks (me to mmb, mmb to go, go to mr, pg to mmb by default), the
-///   chord point moved onto the outer bone along the interpolated depth direction, depth linear between the
+/// - mandible arcs: points between two landmarks (me to mmb, mmb to go, go to mr by default), the
+///   chord point moved onto the outer bone by a ray from the outer curve through the landmarks' depth
+///   directions, depth linear between the
 ///   ends.
-/// Each point's direction is the skull normal there, averaged over a patch of `normal_patch_mm` (five rays).
+/// Each point's direction is the skull normal there: the skull's vertex normals (area-weighted means over each
+/// vertex's ring of triangles) interpolated at the point.
 
 #include <string>
 #include <vector>
@@ -40,8 +42,9 @@ struct LandmarkArc {
   int count = 2;
 };
 
-/// The default mandible arcs: for each side X in {L, R}: me-mmb_X (2), mmb_X-go_X (2), go_X-mr_X (1),
-/// pg-mmb_X (2).
+/// The default mandible arcs: for each side X in {L, R}: me-mmb_X (2), mmb_X-go_X (2), go_X-mr_X (1) along the
+/// lower border and the ramus. (Not pg-mmb: that chord runs medial of the jaw's body, out of reach of rays
+/// between the two ends' depth directions, forward and down.)
 std::vector<LandmarkArc> default_mandible_arcs();
 
 struct LandmarkInterpolationOptions {
@@ -52,7 +55,6 @@ struct LandmarkInterpolationOptions {
   double cranium_min_elevation_front_deg = 15.0;
   double cranium_min_elevation_side_deg = 45.0;
   std::vector<LandmarkArc> mandible_arcs = default_mandible_arcs();
-  double normal_patch_mm = 3.0;
 };
 
 /// Generated points on one skull, in a fixed order for fixed options and landmark names.
@@ -65,11 +67,13 @@ struct InterpolatedLandmarks {
   std::vector<Vec3> skin_targets() const;
 };
 
-/// Generates the points on the skull that `skull_rays` was built from. The cranium cap needs "g", "v" and
+/// Generates the points on `skull` (mm; its vertex normals are used when present, else computed), with
+/// `skull_rays` built from it. The cranium cap needs "g", "v" and
 /// "op" in `landmarks` (else it is skipped); an arc whose end is missing is skipped. Throws InputError for
 /// inconsistent `landmarks` sizes, non-finite values or options out of range (rings and sectors in [1, 64],
-/// elevations in [0, 89], arc counts in [1, 32], patch in [0, 20]). Deterministic.
-InterpolatedLandmarks interpolate_landmarks(const RayCaster& skull_rays, const LandmarkDepths& landmarks,
+/// elevations in [0, 89], arc counts in [1, 32]) or a ray caster of another mesh. Deterministic.
+InterpolatedLandmarks interpolate_landmarks(const TriMesh& skull, const RayCaster& skull_rays,
+                                            const LandmarkDepths& landmarks,
                                             const LandmarkInterpolationOptions& options = {});
 
 /// The template's own skin points for interpolated skull points: where each point's normal ray first meets

@@ -4,7 +4,6 @@
 #include <numbers>
 
 #include "core/error.hpp"
-#include "core/parallel.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "spatial/closest_point.hpp"
 
@@ -97,6 +96,14 @@ Vec3 mirror(const Vec3& p) {
   return Vec3(-p.x(), p.y(), p.z());
 }
 
+/// The right-side twin of a left-side muscle ("_L" becomes "_R"), point for point mirrored.
+MuscleLayout mirrored_layout(const MuscleLayout& left) {
+  MuscleLayout right = left;
+  right.name = left.name.substr(0, left.name.size() - 2) + "_R";
+  for (Vec3& p : right.grid) p = mirror(p);
+  return right;
+}
+
 }  // namespace
 
 std::vector<MuscleLayout> head_phantom_muscle_layouts(int fibre_count, int samples_per_fibre) {
@@ -112,8 +119,7 @@ std::vector<MuscleLayout> head_phantom_muscle_layouts(int fibre_count, int sampl
     }
     out.push_back(
         linear_layout(std::string(a.name) + "_L", a.origin, a.insertion, a.width_mm, fibre_count, samples_per_fibre));
-    out.push_back(linear_layout(std::string(a.name) + "_R", mirror(a.origin), mirror(a.insertion), a.width_mm,
-                                fibre_count, samples_per_fibre));
+    out.push_back(mirrored_layout(out.back()));
   }
   for (const SphincterAnchor& a : sphincter_anchors) {
     if (!a.bilateral) {
@@ -123,8 +129,7 @@ std::vector<MuscleLayout> head_phantom_muscle_layouts(int fibre_count, int sampl
     }
     out.push_back(sphincter_layout(std::string(a.name) + "_L", a.centre, a.half_width_mm, a.half_height_mm, fibre_count,
                                    samples_per_fibre));
-    out.push_back(sphincter_layout(std::string(a.name) + "_R", mirror(a.centre), a.half_width_mm, a.half_height_mm,
-                                   fibre_count, samples_per_fibre));
+    out.push_back(mirrored_layout(out.back()));
   }
   return out;
 }

@@ -30,6 +30,23 @@ double bone(const Vec3& p) {
   return phantom().bone_distance(p);
 }
 
+/// The head phantom seen only over its skull (above the third cervical vertebra): the bone surface is sampled
+/// over 57 % of the head's box.
+class SkullRegion final : public Phantom {
+ public:
+  std::string name() const override { return "head skull"; }
+  double skin_distance(const Vec3& p) const override { return phantom().skin_distance(p); }
+  double bone_distance(const Vec3& p) const override { return phantom().bone_distance(p); }
+  BoundingBox bounds() const override {
+    BoundingBox box;
+    box.extend(Vec3(-80, -105, -95));
+    box.extend(Vec3(80, 115, 146));
+    return box;
+  }
+  const std::vector<std::string>& part_names() const override { return phantom().part_names(); }
+  int part_at(const Vec3& p) const override { return phantom().part_at(p); }
+};
+
 /// First point of o + t d (t in (0, t_max], d unit) inside the phantom's bone, by sphere tracing with half
 /// steps (the smooth unions make the distance a bound, not exact) and bisection to 1e-6 mm. None when the ray
 /// starts inside bone or misses.
@@ -54,11 +71,24 @@ std::optional<Vec3> march(const Vec3& o, const Vec3& d, double t_max) {
   return std::nullopt;
 }
 
-Vec3 bone_normal(const Vec3& p) {
+Vec3 bone_gradient(const Vec3& p) {
   constexpr double h = 0.2;
-  const Vec3 g(bone(p + Vec3(h, 0, 0)) - bone(p - Vec3(h, 0, 0)), bone(p + Vec3(0, h, 0)) - bone(p - Vec3(0, h, 0)),
-               bone(p + Vec3(0, 0, h)) - bone(p - Vec3(0, 0, h)));
-  return g.normalized();
+  return Vec3(bone(p + Vec3(h, 0, 0)) - bone(p - Vec3(h, 0, 0)), bone(p + Vec3(0, h, 0)) - bone(p - Vec3(0, h, 0)),
+              bone(p + Vec3(0, 0, h)) - bone(p - Vec3(0, 0, h)))
+      .normalized();
+}
+
+/// The skull's outward normal at p averaged over a small patch (as the paper orients its depth markers): the
+/// mean of the bone distance's unit gradients at the 27 points of a 2 mm lattice around p, so a landmark in a
+/// crease (where alveolar bone meets a tooth) gets the direction of the surface around it.
+Vec3 bone_normal(const Vec3& p) {
+  Vec3 sum = Vec3::Zero();
+  for (int i = -1; i <= 1; ++i) {
+    for (int j = -1; j <= 1; ++j) {
+      for (int k = -1; k <= 1; ++k) sum += bone_gradient(p + 2.0 * Vec3(i, j, k));
+    }
+  }
+  return sum.norm() > 0 ? sum.normalized() : bone_gradient(p);
 }
 
 [[noreturn]] void not_found(const std::string& name) {
@@ -139,6 +169,7 @@ std::optional<Vec3> extreme_hit(double u0, double u1, double v0, double v1, doub
 
 // The phantom's design (head_phantom.cpp): orbit centre, tooth positions on the dental arch.
 const Vec3 orbit_centre(32.0, -68.0, 18.0);
+constexpr double nasal_bone_top_z = 24.0;
 Vec2 tooth_xy(int t) {
   const double angle = (t + 0.5) / 8.0 * 1.35;
   return Vec2(std::sin(angle) * 24.0, -78.0 + (1.0 - std::cos(angle)) * 34.0);
@@ -277,6 +308,7 @@ TriMesh skull_only(const TriMesh& bone_mesh) {
   std::vector<bool> keep(bone_mesh.triangles.size());
   for (std::size_t t = 0; t < keep.size(); ++t) {
     const Vec3 c = centre[static_cast<std::size_t>(comp[t])] / weight[static_cast<std::size_t>(comp[t])];
+    // Vertebrae (and pieces of them cut by the sampling box's floor) lie behind and below the face.
     keep[t] = !(c.z() < -30.0 && c.y() > 5.0 && std::abs(c.x()) < 20.0);
   }
   return extract_triangles(bone_mesh, keep);
@@ -298,17 +330,20 @@ std::vector<PhantomSkullLandmark> head_phantom_skull_landmarks() {
 
   // Midsagittal profile, 0.25 mm apart from the brow to below the chin.
   const Profile prof = midline_profile(60.0, -90.0, 0.25);
+  // Nasion: the nasofrontal suture on the midline, which on the phantom is the top of its nasal bones
+  // (head_phantom.cpp); the phantom's profile has no concavity there to find it by.
+  const std::size_t n = prof.at(nasal_bone_top_z);
+  if (!prof.hit(n)) not_found("n");
+  // Glabella: the most anterior midline point of the frontal bone above nasion, between the brow ridges.
   std::optional<std::size_t> g;
-  for (std::size_t i = 0; i < prof.size(); ++i) {
-    if (prof.hit(i) && prof.z[i] <= 50.0 && prof.z[i] >= 15.0 && (!g || prof.y(i) < prof.y(*g))) g = i;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (prof.hit(i) && prof.z[i] >= prof.z[n] + 3.0 && prof.z[i] <= 50.0 && (!g || prof.y(i) < prof.y(*g))) g = i;
   }
   if (!g) not_found("g");
-  // Down from glabella along the nasal bones until the profile falls back into the nasal aperture.
-  std::size_t rhi = *g;
+  // Down from nasion along the nasal bones until the profile falls back into the nasal aperture.
+  std::size_t rhi = n;
   while (rhi + 1 < prof.size() && prof.hit(rhi + 1) && prof.y(rhi + 1) - prof.y(rhi) < 4.0) ++rhi;
-  if (rhi == *g) not_found("rhi");
-  std::size_t n = *g + 1;
-  for (std::size_t i = *g + 1; i < rhi; ++i) n = prof.y(i) > prof.y(n) ? i : n;
+  if (rhi == n) not_found("rhi");
   const std::size_t mn = prof.at(0.5 * (prof.z[n] + prof.z[rhi]));
   // Below the aperture: the floor where the maxilla's front returns, then the upper incisor's edge.
   std::size_t floor = rhi + 1;
@@ -412,8 +447,13 @@ std::vector<PhantomSkullLandmark> head_phantom_skull_landmarks() {
   }
   if (y_lo > y_hi) not_found("mr");
   const Vec3 mr = required(march(Vec3(150, 0.5 * (y_lo + y_hi), mr_z), Vec3(-1, 0, 0), 150.0), "mr");
-  const Vec3 border = 0.5 * (go + me);
-  const Vec3 mmb = required(march(Vec3(border.x(), border.y(), -140), Vec3(0, 0, 1), 120.0), "mmb");
+  // The lowest point of the mandible's cross-section halfway between gonion and menton.
+  const double border_y = 0.5 * (go.y() + me.y());
+  const Vec3 mmb =
+      required(extreme_hit(
+                   5.0, 55.0, 0.0, 0.0, 0.5, Vec3(0, 0, 1), 120.0,
+                   [&](double x, double) { return Vec3(x, border_y, -140); }, [](const Vec3& p) { return -p.z(); }),
+               "mmb");
   const Vec2 canine = tooth_xy(2), molar2 = tooth_xy(6);
   const Vec3 sC = required(march(Vec3(canine.x(), -150, -30), Vec3(0, 1, 0), 250.0), "sC");
   const Vec3 iC = required(march(Vec3(canine.x(), -150, -56), Vec3(0, 1, 0), 250.0), "iC");
@@ -453,8 +493,10 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
                                                options.skin_edge_mm, options.remesh_iterations),
                               1);
   compute_normals(head.skin);
-  head.skull = skull_only(phantom_surface(phantom(), PhantomSurface::bone, options.skull_voxel_mm));
+  head.seconds_skin = watch.lap();
+  head.skull = skull_only(phantom_surface(SkullRegion(), PhantomSurface::bone, options.skull_voxel_mm));
   compute_normals(head.skull);
+  head.seconds_skull = watch.lap();
 
   // Landmark pairs: the definitions on the phantom's bone, moved onto the skull mesh, and the skin where the
   // normal meets it.
@@ -474,6 +516,7 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
     head.landmarks.push_back(pair);
   }
 
+  head.seconds_landmarks = watch.lap();
   if (options.uv_atlas) {
     head.triangle_chart = assign_charts(head.skin);
     const auto nb = triangle_neighbours(head.skin);
@@ -487,13 +530,14 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
     head.uv_overlap_free = atlas.stats.overlap_free;
   }
   head.chart_names = {"top", "bottom", "face", "left", "right", "back"};
+  head.seconds_atlas = watch.lap();
 
   head.muscles = head_phantom_muscle_layouts(options.muscle_fibres, options.muscle_samples);
   const ClosestPointQuery on_skin(head.skin);
   for (MuscleLayout& m : head.muscles) {
     for (Vec3& p : m.grid) p = on_skin.query(p)->point;
   }
-  head.seconds = watch.seconds();
+  head.seconds = head.seconds_skin + head.seconds_skull + head.seconds_landmarks + head.seconds_atlas + watch.lap();
   return head;
 }
 

@@ -58,7 +58,8 @@ struct TemplateHead {
   TriMesh skull;  ///< cranium, mandible and teeth (the cervical spine is left out), mm
   std::vector<TemplateLandmarkPair> landmarks;
   std::vector<MuscleLayout> muscles;  ///< the 24 muscles, grids on the skin
-  double seconds = 0.0;               ///< time to build
+  double seconds = 0.0;               ///< time to build, and its stages:
+  double seconds_skin = 0.0, seconds_skull = 0.0, seconds_landmarks = 0.0, seconds_atlas = 0.0;
 };
 
 /// Builds the template head (deterministic). Throws InputError for options out of range (skin_voxel_mm and
