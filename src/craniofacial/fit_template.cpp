@@ -54,8 +54,9 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   m_result.given_pair_count = m_result.pair_names.size();
   m_skull_rays = std::make_unique<RayCaster>(m_skull);
 
-  // All points the warp moves: the skin's vertices, then the muscle grids.
+  // All points the warp moves: the skin's vertices, the skin-only landmarks, then the muscle grids.
   std::vector<Vec3> points = head.skin.positions;
+  for (const TemplateSkinLandmark& l : head.skin_landmarks) points.push_back(l.position);
   if (options.muscles) {
     for (const MuscleLayout& m : head.muscles) points.insert(points.end(), m.grid.begin(), m.grid.end());
   }
@@ -113,9 +114,11 @@ TemplateFit::~TemplateFit() = default;
 
 void TemplateFit::apply_positions() {
   m_result.skin = with_positions(m_head.skin, m_warped, 0);
+  std::size_t offset = m_head.skin.positions.size();
+  m_result.skin_landmarks = m_head.skin_landmarks;
+  for (TemplateSkinLandmark& l : m_result.skin_landmarks) l.position = m_warped[offset++];
   if (!m_options.muscles) return;
   m_result.muscle_layouts = m_head.muscles;
-  std::size_t offset = m_head.skin.positions.size();
   for (MuscleLayout& m : m_result.muscle_layouts) {
     for (Vec3& p : m.grid) p = m_warped[offset++];
   }

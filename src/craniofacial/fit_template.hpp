@@ -35,8 +35,9 @@ struct FitTemplateOptions {
 
 struct TemplateFitResult {
   TriMesh skin;  ///< the template's skin (same triangles, UVs, material) at the warped positions, new normals
-  std::vector<MuscleLayout> muscle_layouts;  ///< warped layout grids
-  std::vector<MuscleShape> muscles;          ///< shaped under the warped skin
+  std::vector<MuscleLayout> muscle_layouts;          ///< warped layout grids
+  std::vector<MuscleShape> muscles;                  ///< shaped under the warped skin
+  std::vector<TemplateSkinLandmark> skin_landmarks;  ///< the template's skin-only landmarks, warped
   /// Landmark pairs of the warp: the given ones (their template skin names) first, then the interpolated ones.
   std::vector<std::string> pair_names;
   std::vector<Vec3> sources;  ///< template skin points p_i

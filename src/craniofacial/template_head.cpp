@@ -30,6 +30,28 @@ double bone(const Vec3& p) {
   return phantom().bone_distance(p);
 }
 
+/// First point of o + t d (t in (0, t_max], d unit) inside the phantom's skin (as march() for bone).
+std::optional<Vec3> march_skin(const Vec3& o, const Vec3& d, double t_max) {
+  double t0 = 0.0;
+  double f0 = phantom().skin_distance(o);
+  if (f0 <= 0.0) return std::nullopt;
+  while (t0 < t_max) {
+    const double t1 = std::min(t_max, t0 + std::max(0.2, 0.5 * f0));
+    const double f1 = phantom().skin_distance(o + t1 * d);
+    if (f1 <= 0.0) {
+      double a = t0, b = t1;
+      for (int i = 0; i < 60 && b - a > 1e-7; ++i) {
+        const double m = 0.5 * (a + b);
+        (phantom().skin_distance(o + m * d) <= 0.0 ? b : a) = m;
+      }
+      return o + b * d;
+    }
+    t0 = t1;
+    f0 = f1;
+  }
+  return std::nullopt;
+}
+
 /// The head phantom seen only over its skull (above the third cervical vertebra): the bone surface is sampled
 /// over 57 % of the head's box.
 class SkullRegion final : public Phantom {
@@ -314,6 +336,37 @@ TriMesh skull_only(const TriMesh& bone_mesh) {
   return extract_triangles(bone_mesh, keep);
 }
 
+// The phantom's mouth slit (head_phantom.cpp): its lateral end and height.
+const Vec3 mouth_slit_corner(21.0, -92.0, -43.5);
+
+/// The skin-only landmarks on the phantom's skin (before projection onto the skin mesh).
+std::vector<TemplateSkinLandmark> phantom_skin_landmarks() {
+  std::vector<TemplateSkinLandmark> out;
+  std::optional<Vec3> prn;
+  for (double z = -30.0; z <= 20.0; z += 0.25) {
+    const auto hit = march_skin(Vec3(0, -160, z), Vec3(0, 1, 0), 200.0);
+    if (hit && (!prn || hit->y() < prn->y())) prn = hit;
+  }
+  std::optional<Vec3> al;
+  for (double y = -102.0; y <= -94.0; y += 0.25) {
+    for (double z = -25.0; z <= -5.0; z += 0.25) {
+      const auto hit = march_skin(Vec3(40, y, z), Vec3(-1, 0, 0), 40.0);
+      if (hit && hit->x() < 30.0 && (!al || hit->x() > al->x())) al = hit;
+    }
+  }
+  const auto sto = march_skin(Vec3(0, -160, mouth_slit_corner.z()), Vec3(0, 1, 0), 200.0);
+  if (!prn) not_found("prn'");
+  if (!al) not_found("al'");
+  if (!sto) not_found("sto'");
+  out.push_back({"prn'", *prn});
+  out.push_back({"al'_L", *al});
+  out.push_back({"al'_R", mirrored(*al)});
+  out.push_back({"ch'_L", mouth_slit_corner});
+  out.push_back({"ch'_R", mirrored(mouth_slit_corner)});
+  out.push_back({"sto'", *sto});
+  return out;
+}
+
 }  // namespace
 
 std::vector<PhantomSkullLandmark> head_phantom_skull_landmarks() {
@@ -516,6 +569,11 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
     head.landmarks.push_back(pair);
   }
 
+  const ClosestPointQuery skin_points(head.skin);
+  for (TemplateSkinLandmark l : phantom_skin_landmarks()) {
+    l.position = skin_points.query(l.position)->point;
+    head.skin_landmarks.push_back(l);
+  }
   head.seconds_landmarks = watch.lap();
   if (options.uv_atlas) {
     head.triangle_chart = assign_charts(head.skin);

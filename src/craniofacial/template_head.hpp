@@ -17,7 +17,9 @@
 /// through the orbit's centre), alar curvature 5 mm lateral to the nasal aperture's widest point. Names are the
 /// T-Table abbreviations; bilateral ones end in _L or _R (the patient's side: x > 0 is left in LPS). Skin
 /// landmarks carry the table's primed names ("se'" for nasion, "sM2'_L" and "iM2'_L" for the upper and lower
-/// ecm2). Frame: the phantom's LPS millimetres (x left, y posterior, z superior; the face looks toward -y).
+/// ecm2). Skin-only landmarks: pronasale the most anterior point of the nose, alare the most lateral point of
+/// each nose wing, stomion the midline point of the lips' parting, cheilion the lateral end of the phantom's
+/// mouth slit. Frame: the phantom's LPS millimetres (x left, y posterior, z superior; the face looks toward -y).
 
 #include <string>
 #include <vector>
@@ -49,6 +51,13 @@ struct TemplateLandmarkPair {
   bool midline = false;
 };
 
+/// A landmark defined on the skin only (no skull counterpart): the nose and mouth points that the paper's
+/// guides move in the second warp (section 4.3).
+struct TemplateSkinLandmark {
+  std::string name;  ///< "prn'" (pronasale), "al'_L"/"al'_R" (alare), "ch'_L"/"ch'_R" (cheilion), "sto'" (stomion)
+  Vec3 position = Vec3::Zero();  ///< on the skin mesh, mm
+};
+
 struct TemplateHead {
   TriMesh skin;                          ///< mm, vertex normals, corner UVs when options.uv_atlas
   std::vector<int> triangle_chart;       ///< #F chart of each skin triangle (index into chart_names)
@@ -57,6 +66,7 @@ struct TemplateHead {
   bool uv_overlap_free = false;
   TriMesh skull;  ///< cranium, mandible and teeth (the cervical spine is left out), mm
   std::vector<TemplateLandmarkPair> landmarks;
+  std::vector<TemplateSkinLandmark> skin_landmarks;
   std::vector<MuscleLayout> muscles;  ///< the 24 muscles, grids on the skin
   double seconds = 0.0;               ///< time to build, and its stages:
   double seconds_skin = 0.0, seconds_skull = 0.0, seconds_landmarks = 0.0, seconds_atlas = 0.0;
