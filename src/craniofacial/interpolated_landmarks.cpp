@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "geometry/mesh_measures.hpp"
+#include "spatial/closest_point.hpp"
 #include "spatial/ray_caster.hpp"
 
 namespace forensim {
@@ -44,7 +45,6 @@ std::vector<LandmarkArc> default_mandible_arcs() {
   std::vector<LandmarkArc> arcs;
   for (const char* side : {"_L", "_R"}) {
     const std::string s(side);
-    arcs.push_back({"me", "mmb" + s, 2});
     arcs.push_back({"mmb" + s, "go" + s, 2});
     arcs.push_back({"go" + s, "mr" + s, 1});
   }
@@ -154,6 +154,14 @@ InterpolatedLandmarks interpolate_landmarks(const TriMesh& skull, const RayCaste
   }
 
   if (options.mandible) {
+    const ClosestPointQuery surface(skull);
+    auto normal_at = [&](const ClosestPoint& c) {
+      const Tri& f = skull.triangles[static_cast<std::size_t>(c.triangle)];
+      const Vec3 n = c.barycentric(0) * vertex_normals[static_cast<std::size_t>(f[0])] +
+                     c.barycentric(1) * vertex_normals[static_cast<std::size_t>(f[1])] +
+                     c.barycentric(2) * vertex_normals[static_cast<std::size_t>(f[2])];
+      return n.normalized();
+    };
     for (const LandmarkArc& arc : options.mandible_arcs) {
       require_input(arc.count >= 1 && arc.count <= 32, source, "arc " + arc.from + "~" + arc.to,
                     "count must be in [1, 32]");
@@ -161,20 +169,32 @@ InterpolatedLandmarks interpolate_landmarks(const TriMesh& skull, const RayCaste
       const std::size_t a = index[arc.from], b = index[arc.to];
       const double da = landmarks.depth_vectors[a].norm(), db = landmarks.depth_vectors[b].norm();
       require_input(da > 0.0 && db > 0.0, source, "arc " + arc.from + "~" + arc.to, "zero depth vector at an end");
-      // Rays aim at the chord point from the curve through the two landmarks' depth directions, offset by the
-      // landmarks' distance (so the construction scales with the skull): the chord of a curved jaw runs under
-      // or behind the bone, and a ray from that outer curve crosses the bone from outside.
-      const double offset = (landmarks.skull[b] - landmarks.skull[a]).norm();
-      const Vec3 outer_a = landmarks.skull[a] + offset * landmarks.depth_vectors[a] / da;
-      const Vec3 outer_b = landmarks.skull[b] + offset * landmarks.depth_vectors[b] / db;
+      // Walk over the outer bone from one landmark toward the other: steps of 1/64 of their distance along the
+      // surface's tangent plane, each put back onto the surface by its closest point. A straight chord would
+      // cut through the jaw's arch and land on its inner side.
+      const Vec3 end = landmarks.skull[b];
+      const double step = (end - landmarks.skull[a]).norm() / 64.0;
+      if (step <= 0.0) continue;
+      std::vector<ClosestPoint> path{*surface.query(landmarks.skull[a])};
+      std::vector<double> arclength{0.0};
+      for (int k = 0; k < 256 && (path.back().point - end).norm() > step; ++k) {
+        const Vec3 n = normal_at(path.back());
+        Vec3 d = end - path.back().point;
+        d -= d.dot(n) * n;
+        if (d.norm() < 1e-12) break;
+        const ClosestPoint next = *surface.query(path.back().point + step * d.normalized());
+        arclength.push_back(arclength.back() + (next.point - path.back().point).norm());
+        path.push_back(next);
+      }
+      path.push_back(*surface.query(end));
+      arclength.push_back(arclength.back() + (path.back().point - path[path.size() - 2].point).norm());
       for (int k = 1; k <= arc.count; ++k) {
         const double t = static_cast<double>(k) / (arc.count + 1);
-        const Vec3 chord = (1.0 - t) * landmarks.skull[a] + t * landmarks.skull[b];
-        const Vec3 origin = (1.0 - t) * outer_a + t * outer_b;
-        const Vec3 dir = (chord - origin).normalized();
-        if (const auto h = first_hit(skull, vertex_normals, skull_rays, origin, dir, 3.0 * offset)) {
-          add(arc.from + "~" + arc.to + "_" + std::to_string(k), *h, (1.0 - t) * da + t * db);
-        }
+        const double want = t * arclength.back();
+        std::size_t j = 0;
+        while (j + 1 < arclength.size() && arclength[j + 1] < want) ++j;
+        const ClosestPoint& c = path[j];
+        add(arc.from + "~" + arc.to + "_" + std::to_string(k), Hit{c.point, normal_at(c)}, (1.0 - t) * da + t * db);
       }
     }
   }

@@ -11,10 +11,9 @@
 ///   behind, `cranium_min_elevation_side_deg` at the sides, which keeps off the temporal muscles), meet the
 ///   outer skull; the depth is the inverse-distance-squared mean (in normalised frame coordinates) of the depths
 ///   at g, v and op;
-/// - mandible arcs: points between two landmarks (me to mmb, mmb to go, go to mr by default), the
-///   chord point moved onto the outer bone by a ray from the outer curve through the landmarks' depth
-///   directions, depth linear between the
-///   ends.
+/// - mandible arcs: points at equal steps along a path over the outer bone between two landmarks (mmb to
+///   go and go to mr by default; the path walks the surface's tangent plane toward the far end and
+///   is put back onto the surface by closest points), depth linear along it.
 /// Each point's direction is the skull normal there: the skull's vertex normals (area-weighted means over each
 /// vertex's ring of triangles) interpolated at the point.
 
@@ -42,9 +41,9 @@ struct LandmarkArc {
   int count = 2;
 };
 
-/// The default mandible arcs: for each side X in {L, R}: me-mmb_X (2), mmb_X-go_X (2), go_X-mr_X (1) along the
-/// lower border and the ramus. (Not pg-mmb: that chord runs medial of the jaw's body, out of reach of rays
-/// between the two ends' depth directions, forward and down.)
+/// The default mandible arcs: for each side X in {L, R}: mmb_X-go_X (2) and go_X-mr_X (1), along the lower
+/// border and the ramus. Arcs from the chin's midline (me, pg) to mmb are left out: the surface path between
+/// them turns under the jaw onto its inner (lingual) side, where no tissue depth is measured.
 std::vector<LandmarkArc> default_mandible_arcs();
 
 struct LandmarkInterpolationOptions {
