@@ -1,0 +1,187 @@
+#include "craniofacial/fit_template.hpp"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/timer.hpp"
+#include "craniofacial/rbf_warp.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "spatial/ray_caster.hpp"
+
+namespace forensim {
+namespace {
+
+/// Positions of `mesh` replaced, normals recomputed (triangles, UVs and the rest kept).
+TriMesh with_positions(const TriMesh& mesh, const std::vector<Vec3>& positions, std::size_t offset) {
+  TriMesh out = mesh;
+  for (std::size_t v = 0; v < out.positions.size(); ++v) out.positions[v] = positions[offset + v];
+  compute_normals(out);
+  return out;
+}
+
+}  // namespace
+
+TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
+                         const FitTemplateOptions& options)
+    : m_head(head), m_skull(skull), m_options(options) {
+  Stopwatch total;
+  const char* const source = "skull landmarks";
+  require_input(
+      landmarks.skull.size() == landmarks.names.size() && landmarks.depth_vectors.size() == landmarks.names.size(),
+      source, "", "names, positions and depth vectors differ in number");
+  require_input(!skull.triangles.empty(), "target skull", "", "has no triangles");
+  skull.validate("target skull");
+  if (m_skull.normals.size() != m_skull.positions.size()) compute_normals(m_skull);
+  std::set<int> used;
+  for (std::size_t i = 0; i < landmarks.names.size(); ++i) {
+    const std::string& name = landmarks.names[i];
+    const int j = find_template_landmark(head, name);
+    require_input(j >= 0, source, name, "is not a landmark of the template head");
+    require_input(used.insert(j).second, source, name, "given twice");
+    require_input(std::isfinite(landmarks.skull[i].sum()) && std::isfinite(landmarks.depth_vectors[i].sum()), source,
+                  name, "non-finite position or depth vector");
+    const TemplateLandmarkPair& pair = head.landmarks[static_cast<std::size_t>(j)];
+    m_input_names.push_back(name);
+    m_given.names.push_back(pair.bone_name);
+    m_given.skull.push_back(landmarks.skull[i]);
+    m_given.depth_vectors.push_back(landmarks.depth_vectors[i]);
+    m_result.pair_names.push_back(pair.skin_name);
+    m_result.sources.push_back(pair.skin);
+    m_result.targets.push_back(landmarks.skull[i] + landmarks.depth_vectors[i]);
+  }
+  m_result.given_pair_count = m_result.pair_names.size();
+  m_skull_rays = std::make_unique<RayCaster>(m_skull);
+
+  // All points the warp moves: the skin's vertices, the skin-only landmarks, then the muscle grids.
+  std::vector<Vec3> points = head.skin.positions;
+  for (const TemplateSkinLandmark& l : head.skin_landmarks) points.push_back(l.position);
+  if (options.muscles) {
+    for (const MuscleLayout& m : head.muscles) points.insert(points.end(), m.grid.begin(), m.grid.end());
+  }
+
+  if (options.count_violations) {
+    const RbfWarp given(m_result.sources, m_result.targets, "skull landmarks");
+    const std::vector<Vec3> skin = given.evaluate_batch(head.skin.positions);
+    m_result.violations_given_only = count_skull_skin_violations(m_skull, with_positions(head.skin, skin, 0));
+  }
+
+  if (options.interpolated_landmarks) {
+    // The same generators on the template's skull (with the template's own depths) and on the target's.
+    LandmarkDepths on_template;
+    for (std::size_t i = 0; i < m_given.names.size(); ++i) {
+      const TemplateLandmarkPair& pair =
+          head.landmarks[static_cast<std::size_t>(find_template_landmark(head, m_input_names[i]))];
+      on_template.names.push_back(pair.bone_name);
+      on_template.skull.push_back(pair.skull);
+      on_template.depth_vectors.push_back(pair.skin - pair.skull);
+    }
+    const RayCaster template_skull(head.skull), template_skin(head.skin);
+    const InterpolatedLandmarks t =
+        interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
+    const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, options.interpolation);
+    const std::vector<Vec3> t_skin = skin_points_along_normals(template_skin, t);
+    std::map<std::string, std::size_t> on_target;
+    for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
+    for (std::size_t i = 0; i < t.names.size(); ++i) {
+      const auto it = on_target.find(t.names[i]);
+      if (it == on_target.end()) continue;
+      const std::size_t k = it->second;
+      m_interpolated_names.push_back(t.names[i]);
+      m_result.interpolated.names.push_back(s.names[k]);
+      m_result.interpolated.skull.push_back(s.skull[k]);
+      m_result.interpolated.normals.push_back(s.normals[k]);
+      m_result.interpolated.depth_mm.push_back(s.depth_mm[k]);
+      m_result.pair_names.push_back(t.names[i]);
+      m_result.sources.push_back(t_skin[i]);
+      m_result.targets.push_back(s.skull[k] + s.depth_mm[k] * s.normals[k]);
+    }
+  }
+
+  Stopwatch setup;
+  m_warp = std::make_unique<RbfWarp>(m_result.sources, m_result.targets, "landmark pairs");
+  m_points = std::make_unique<RbfPointWarp>(*m_warp, points);
+  m_result.seconds_setup = setup.seconds();
+  m_warped = m_points->warp(m_result.targets);
+  apply_positions();
+  m_result.max_landmark_residual_mm = m_warp->max_landmark_residual();
+  if (options.count_violations) recount_violations();
+  m_result.seconds_total = total.seconds();
+}
+
+TemplateFit::~TemplateFit() = default;
+
+void TemplateFit::apply_positions() {
+  m_result.skin = with_positions(m_head.skin, m_warped, 0);
+  std::size_t offset = m_head.skin.positions.size();
+  m_result.skin_landmarks = m_head.skin_landmarks;
+  for (TemplateSkinLandmark& l : m_result.skin_landmarks) l.position = m_warped[offset++];
+  if (!m_options.muscles) return;
+  m_result.muscle_layouts = m_head.muscles;
+  for (MuscleLayout& m : m_result.muscle_layouts) {
+    for (Vec3& p : m.grid) p = m_warped[offset++];
+  }
+  m_result.muscles = shape_muscles(m_result.muscle_layouts, m_result.skin);
+}
+
+std::vector<Vec3> TemplateFit::current_targets(InterpolatedLandmarks& record) const {
+  std::vector<Vec3> targets;
+  for (std::size_t i = 0; i < m_given.names.size(); ++i) targets.push_back(m_given.skull[i] + m_given.depth_vectors[i]);
+  record = m_result.interpolated;
+  if (m_interpolated_names.empty()) return targets;
+  const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, m_options.interpolation);
+  std::map<std::string, std::size_t> on_target;
+  for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
+  for (std::size_t j = 0; j < m_interpolated_names.size(); ++j) {
+    // A point the moved landmarks no longer reach keeps its previous target.
+    const auto it = on_target.find(m_interpolated_names[j]);
+    if (it != on_target.end()) {
+      const std::size_t k = it->second;
+      record.skull[j] = s.skull[k];
+      record.normals[j] = s.normals[k];
+      record.depth_mm[j] = s.depth_mm[k];
+    }
+    targets.push_back(record.skull[j] + record.depth_mm[j] * record.normals[j]);
+  }
+  return targets;
+}
+
+std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector) {
+  std::size_t i = 0;
+  while (i < m_input_names.size() && m_input_names[i] != name) ++i;
+  require_input(i < m_input_names.size(), "moved landmark", name, "is not one of the fit's landmarks");
+  require_input(std::isfinite(skull_position.sum()) && std::isfinite(depth_vector.sum()), "moved landmark", name,
+                "non-finite position or depth vector");
+  m_given.skull[i] = skull_position;
+  m_given.depth_vectors[i] = depth_vector;
+  InterpolatedLandmarks record;
+  const std::vector<Vec3> targets = current_targets(record);
+  std::vector<std::size_t> changed;
+  for (std::size_t j = 0; j < targets.size(); ++j) {
+    if (targets[j] != m_result.targets[j]) changed.push_back(j);
+  }
+  // Few changes: add each one's cardinal function; many (the cranium frame moved): one product.
+  if (changed.size() * 4 < targets.size()) {
+    for (const std::size_t j : changed) m_points->move_target(j, targets[j] - m_result.targets[j], m_warped);
+  } else {
+    m_warped = m_points->warp(targets);
+  }
+  for (const std::size_t j : changed) m_warp->set_target(j, targets[j]);
+  m_result.targets = targets;
+  m_result.interpolated = std::move(record);
+  apply_positions();
+  m_result.max_landmark_residual_mm = m_warp->max_landmark_residual();
+  return changed.size();
+}
+
+void TemplateFit::recount_violations() {
+  m_result.violations = count_skull_skin_violations(m_skull, m_result.skin);
+}
+
+TemplateFitResult fit_template(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
+                               const FitTemplateOptions& options) {
+  return TemplateFit(head, skull, landmarks, options).result();
+}
+
+}  // namespace forensim

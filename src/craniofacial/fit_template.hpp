@@ -1,0 +1,97 @@
+#pragma once
+/// The reconstruction's fitting stage on plain data (Kähler, Haber and Seidel 2003, section 4.2): skull
+/// landmarks s_i with depth vectors d_i give target skin points q_i = s_i + d_i; the RBF warp of eq. 1 that
+/// takes the template's skin landmarks p_i onto them is applied to the template's skin vertices and to its
+/// muscle layout grids (the mesh's topology, UVs and textures are kept: only positions move), then the muscle
+/// shapes are recomputed under the warped skin. Interpolated landmark pairs on the cranium and mandible
+/// (interpolated_landmarks.hpp, Figure 6b) are added to the given ones, and the skull/skin violations are
+/// reported for the warp with the given pairs only and for the final one.
+///
+/// TemplateFit keeps the factorised warp and the cardinal functions of the template's points, so moving one
+/// landmark (the interactive case) re-targets the warp and moves the head in O(#points) per changed pair.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "craniofacial/interpolated_landmarks.hpp"
+#include "craniofacial/muscle_layout.hpp"
+#include "craniofacial/skull_skin_violations.hpp"
+#include "craniofacial/template_head.hpp"
+#include "geometry/tri_mesh.hpp"
+
+namespace forensim {
+
+class RayCaster;
+class RbfWarp;
+class RbfPointWarp;
+
+struct FitTemplateOptions {
+  bool interpolated_landmarks = true;
+  LandmarkInterpolationOptions interpolation;
+  bool muscles = true;           ///< warp the muscle grids and reshape them under the skin
+  bool count_violations = true;  ///< skull/skin violations before and after interpolated landmarks
+};
+
+struct TemplateFitResult {
+  TriMesh skin;  ///< the template's skin (same triangles, UVs, material) at the warped positions, new normals
+  std::vector<MuscleLayout> muscle_layouts;          ///< warped layout grids
+  std::vector<MuscleShape> muscles;                  ///< shaped under the warped skin
+  std::vector<TemplateSkinLandmark> skin_landmarks;  ///< the template's skin-only landmarks, warped
+  /// Landmark pairs of the warp: the given ones (their template skin names) first, then the interpolated ones.
+  std::vector<std::string> pair_names;
+  std::vector<Vec3> sources;  ///< template skin points p_i
+  std::vector<Vec3> targets;  ///< q_i = s_i + d_i on the target
+  std::size_t given_pair_count = 0;
+  InterpolatedLandmarks interpolated;         ///< on the target skull (only those also found on the template's)
+  SkullSkinViolations violations_given_only;  ///< after the warp with the given pairs only
+  SkullSkinViolations violations;             ///< after the final warp
+  double max_landmark_residual_mm = 0.0;      ///< max |f(p_i) - q_i| of the final warp
+  double seconds_setup = 0.0;                 ///< factorisation and cardinal functions
+  double seconds_total = 0.0;
+};
+
+class TemplateFit {
+ public:
+  /// `head`: the template (kept by reference: it must outlive the fit). `skull`: the target skull (mm, the
+  /// head's frame). `landmarks`: names (a template pair's skin name, or its bone name when that is unique),
+  /// skull positions and depth vectors. Throws InputError for an unknown or repeated name, sizes that differ,
+  /// fewer than 4 usable pairs, non-finite values, or degenerate landmark sets (RbfWarp).
+  TemplateFit(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
+              const FitTemplateOptions& options = {});
+  ~TemplateFit();
+  TemplateFit(const TemplateFit&) = delete;
+  TemplateFit& operator=(const TemplateFit&) = delete;
+
+  const TemplateFitResult& result() const { return m_result; }
+
+  /// Moves the given landmark `name` (as in the constructor) to a new skull position and depth vector, and
+  /// updates the interpolated targets that depend on it, the skin and the muscles. Violations are not
+  /// recounted (call recount_violations()). Returns the number of warp targets that changed.
+  std::size_t move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector);
+  /// Recounts result().violations for the current skin.
+  void recount_violations();
+
+ private:
+  /// Targets for the current given landmarks, and the interpolated record they come from.
+  std::vector<Vec3> current_targets(InterpolatedLandmarks& record) const;
+  void apply_positions();
+
+  const TemplateHead& m_head;
+  TriMesh m_skull;
+  FitTemplateOptions m_options;
+  std::unique_ptr<RayCaster> m_skull_rays;
+  LandmarkDepths m_given;  ///< the input, keyed by bone names for the interpolation
+  std::vector<std::string> m_input_names;
+  std::vector<std::string> m_interpolated_names;  ///< the pairs kept (found on both skulls)
+  std::unique_ptr<RbfWarp> m_warp;
+  std::unique_ptr<RbfPointWarp> m_points;  ///< skin vertices, then every muscle grid point
+  std::vector<Vec3> m_warped;
+  TemplateFitResult m_result;
+};
+
+/// One-call form of TemplateFit.
+TemplateFitResult fit_template(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
+                               const FitTemplateOptions& options = {});
+
+}  // namespace forensim
