@@ -25,6 +25,10 @@ double per_iteration(double k, int iterations) {
   return 1.0 - std::pow(1.0 - std::clamp(k, 0.0, 1.0), 1.0 / static_cast<double>(iterations));
 }
 
+/// Constraints of a colour group per task: below this a group runs on one thread (task overhead would exceed
+/// the work).
+constexpr std::size_t constraint_grain = 1024;
+
 struct Contact {
   Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
   double height = std::numeric_limits<double>::infinity();
@@ -303,29 +307,39 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   // 5. Gauss-Seidel iterations over independent groups.
   for (int it = 0; it < iterations; ++it) {
     for (const auto& group : model.stretch_groups) {
-      parallel_for(0, group.size(), [&](std::size_t g) {
-        const std::uint32_t e = group[g];
-        const auto a = static_cast<std::size_t>(model.stretch.edge_vertices[e][0]);
-        const auto b = static_cast<std::size_t>(model.stretch.edge_vertices[e][1]);
-        const PairCorrection d =
-            project_stretch(p[a], p[b], w[a], w[b], model.stretch.edge_rest_length[e], m_edge_stiffness[e]);
-        p[a] += d.dp0;
-        p[b] += d.dp1;
-      });
+      parallel_for_chunks(
+          0, group.size(),
+          [&](std::size_t lo, std::size_t hi) {
+            for (std::size_t g = lo; g < hi; ++g) {
+              const std::uint32_t e = group[g];
+              const auto a = static_cast<std::size_t>(model.stretch.edge_vertices[e][0]);
+              const auto b = static_cast<std::size_t>(model.stretch.edge_vertices[e][1]);
+              const PairCorrection d =
+                  project_stretch(p[a], p[b], w[a], w[b], model.stretch.edge_rest_length[e], m_edge_stiffness[e]);
+              p[a] += d.dp0;
+              p[b] += d.dp1;
+            }
+          },
+          constraint_grain);
     }
     for (const auto& group : model.bending_groups) {
-      parallel_for(0, group.size(), [&](std::size_t g) {
-        const std::uint32_t c = group[g];
-        const auto& q = model.bending.quad_vertices[c];
-        const std::size_t i0 = static_cast<std::size_t>(q[0]), i1 = static_cast<std::size_t>(q[1]),
-                          i2 = static_cast<std::size_t>(q[2]), i3 = static_cast<std::size_t>(q[3]);
-        const auto d = project_bending({p[i0], p[i1], p[i2], p[i3]}, Vec4(w[i0], w[i1], w[i2], w[i3]),
-                                       model.bending.rest_angle[c], m_pair_stiffness[c]);
-        p[i0] += d[0];
-        p[i1] += d[1];
-        p[i2] += d[2];
-        p[i3] += d[3];
-      });
+      parallel_for_chunks(
+          0, group.size(),
+          [&](std::size_t lo, std::size_t hi) {
+            for (std::size_t g = lo; g < hi; ++g) {
+              const std::uint32_t c = group[g];
+              const auto& q = model.bending.quad_vertices[c];
+              const std::size_t i0 = static_cast<std::size_t>(q[0]), i1 = static_cast<std::size_t>(q[1]),
+                                i2 = static_cast<std::size_t>(q[2]), i3 = static_cast<std::size_t>(q[3]);
+              const auto d = project_bending({p[i0], p[i1], p[i2], p[i3]}, Vec4(w[i0], w[i1], w[i2], w[i3]),
+                                             model.bending.rest_angle[c], m_pair_stiffness[c]);
+              p[i0] += d[0];
+              p[i1] += d[1];
+              p[i2] += d[2];
+              p[i3] += d[3];
+            }
+          },
+          constraint_grain);
     }
     parallel_for(0, n, [&](std::size_t i) {
       if (w[i] <= 0.0) return;

@@ -78,7 +78,7 @@ TEST(SkinSimulation, StaysPutWithTheVolumeStillAndMoistureConstant) {
     SkinState state = initial_skin_state(model);
     const std::vector<double> moisture(model.vertex_count(), 0.7);
     SkinStepReport report;
-    for (int s = 0; s < 200; ++s) report = sim.step(state, sphere().volume.positions, moisture, dt);
+    for (int s = 0; s < 60; ++s) report = sim.step(state, sphere().volume.positions, moisture, dt);
     // The rest state satisfies every constraint: no drift at all.
     EXPECT_LT(max_displacement(state, model), 1e-9) << "set " << set;
     EXPECT_EQ(report.pulled, 0u);
@@ -97,14 +97,19 @@ TEST(SkinSimulation, PerturbedSkinSettlesWithoutWaves) {
   const std::vector<double> moisture(model.vertex_count(), 1.0);
   const double e0 = kinetic_energy(state, model);
   std::vector<double> energy;
-  for (int s = 0; s < 300; ++s) {
+  for (int s = 0; s < 150; ++s) {
     sim.step(state, sphere().volume.positions, moisture, dt);
     energy.push_back(kinetic_energy(state, model));
   }
   // The motion dies out and the skin comes to rest near where it was.
   EXPECT_LT(energy.back(), 1e-6 * e0);
-  EXPECT_LT(*std::max_element(energy.begin() + 100, energy.end()), 1e-2 * e0);
-  EXPECT_LT(max_displacement(state, model), 2.0 * model.r_max_mm + 0.05);
+  EXPECT_LT(*std::max_element(energy.begin() + 50, energy.end()), 1e-2 * e0);
+  // Each vertex stays within reach of its tracking point: |x - x_rest| <= |x - t| + |t - x_rest| <= r_j + l_i.
+  for (std::size_t i = 0; i < state.positions.size(); ++i) {
+    const double l = model.tracking.rest_distance[i];
+    EXPECT_LE((state.positions[i] - model.vertex_rest_position[i]).norm(), 2.0 * l + model.r_max_mm + 1e-6)
+        << "vertex " << i;
+  }
 }
 
 TEST(SkinSimulation, TrackingHoldsTheSkinWithinTheRadius) {
@@ -118,7 +123,7 @@ TEST(SkinSimulation, TrackingHoldsTheSkinWithinTheRadius) {
   for (Vec3& p : nodes) p += Vec3(1.0, 0.0, 0.0);
   const std::vector<double> moisture(model.vertex_count(), 0.2);
   SkinStepReport report;
-  for (int s = 0; s < 300; ++s) report = sim.step(state, nodes, moisture, dt);
+  for (int s = 0; s < 150; ++s) report = sim.step(state, nodes, moisture, dt);
   const std::vector<Vec3> t = tracking_points(model.tracking, nodes);
   const double k = tracking_stiffness(0.2, settings.slippage);
   ASSERT_GT(k, 0.0);
@@ -131,29 +136,29 @@ TEST(SkinSimulation, TrackingHoldsTheSkinWithinTheRadius) {
   EXPECT_EQ(report.slipped, 0u);
 }
 
-TEST(SkinSimulation, SlippedSkinIsNoLongerPulled) {
+TEST(SkinSimulation, SlippedSkinNoLongerFollowsTheVolume) {
   const SkinModel model = make_skin_model(sphere());
+  auto mean_radius = [](const SkinState& s) {
+    double r = 0.0;
+    for (const Vec3& p : s.positions) r += p.norm();
+    return r / static_cast<double>(s.positions.size());
+  };
+  // Below tau_n every tracking stiffness is zero: the skin keeps its size while the ball shrinks under it.
+  const double dry = 0.5 * model.settings.slippage.zero_below;
   SkinSimulation sim(model);
-  SkinState state = initial_skin_state(model);
-  std::vector<Vec3> nodes = sphere().volume.positions;
-  for (Vec3& p : nodes) p += Vec3(1.0, 0.0, 0.0);
-  // Below tau_n every tracking stiffness is zero: the skin no longer follows the volume away from it.
-  const std::vector<double> dry(model.vertex_count(), 0.5 * model.settings.slippage.zero_below);
+  SkinState slipped = initial_skin_state(model);
   SkinStepReport report;
-  for (int s = 0; s < 50; ++s) report = sim.step(state, nodes, dry, dt);
+  const std::vector<Vec3> nodes = test::scaled_nodes(sphere().volume, 0.8);
+  for (int s = 0; s < 60; ++s) report = sim.step(slipped, nodes, std::vector<double>(model.vertex_count(), dry), dt);
   EXPECT_EQ(report.slipped, model.vertex_count());
   EXPECT_EQ(report.pulled, 0u);
-  // The side the volume moves away from (-x) stays behind; only collisions push the +x side out.
-  double back = 0.0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < state.positions.size(); ++i) {
-    if (model.vertex_rest_position[i].x() < -5.0) {
-      back += state.positions[i].x() - model.vertex_rest_position[i].x();
-      ++count;
-    }
-  }
-  ASSERT_GT(count, 0u);
-  EXPECT_LT(back / static_cast<double>(count), 0.1);
+  EXPECT_GT(mean_radius(slipped), 10.0);
+  // Just above tau_n the skin is still attached and follows the volume in.
+  const double attached = 1.01 * model.settings.slippage.zero_below;
+  SkinState held = initial_skin_state(model);
+  for (int s = 0; s < 60; ++s) report = sim.step(held, nodes, std::vector<double>(model.vertex_count(), attached), dt);
+  EXPECT_EQ(report.slipped, 0u);
+  EXPECT_LT(mean_radius(held), 9.5);
 }
 
 TEST(SkinSimulation, ShrinkingSphereWrinklesWithoutInvertedTriangles) {

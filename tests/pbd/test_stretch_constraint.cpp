@@ -29,7 +29,9 @@ TEST(StretchConstraint, ProjectionScalesTheViolationByOneMinusStiffness) {
       const double before = stretch_value(p0, p1, rest);
       const double after = stretch_value(p0 + d.dp0, p1 + d.dp1, rest);
       EXPECT_NEAR(after, (1.0 - k) * before, 1e-12);
-      if (std::abs(before) > 1e-9) EXPECT_LT(std::abs(after), std::abs(before) + 1e-15);
+      if (std::abs(before) > 1e-9) {
+        EXPECT_LT(std::abs(after), std::abs(before) + 1e-15);
+      }
     }
   }
 }
