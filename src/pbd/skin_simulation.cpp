@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "core/error.hpp"
@@ -28,6 +29,12 @@ double per_iteration(double k, int iterations) {
 /// Constraints of a colour group per task: below this a group runs on one thread (task overhead would exceed
 /// the work).
 constexpr std::size_t constraint_grain = 1024;
+
+/// Per-vertex (per-edge, per-face) loops: a few thousand items per task, so a small skin runs on one thread
+/// and a large one in a few tasks.
+void for_each_item(std::size_t n, const std::function<void(std::size_t)>& body) {
+  parallel_for(0, n, body, 2048);
+}
 
 struct Contact {
   Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
@@ -60,7 +67,7 @@ Contact detect_contact(const SkinModel& model, std::size_t i, const Vec3& p, con
 
 void compute_face_normals(const SkinModel& model, const std::vector<Vec3>& nodes, std::vector<Vec3>& normals) {
   normals.resize(model.boundary_face_nodes.size());
-  parallel_for(0, normals.size(), [&](std::size_t f) {
+  for_each_item(normals.size(), [&](std::size_t f) {
     const Tri& t = model.boundary_face_nodes[f];
     const Vec3& a = nodes[static_cast<std::size_t>(t[0])];
     const Vec3 n = (nodes[static_cast<std::size_t>(t[1])] - a).cross(nodes[static_cast<std::size_t>(t[2])] - a);
@@ -175,7 +182,7 @@ SkinModel make_skin_model(const BodyModel& body, const SkinSettings& settings) {
   std::vector<Vec3> normals;
   compute_face_normals(model, body.volume.positions, normals);
   model.vertex_collision_floor.assign(n, 0.0);
-  parallel_for(0, n, [&](std::size_t i) {
+  for_each_item(n, [&](std::size_t i) {
     const Contact c = detect_contact(model, i, model.vertex_rest_position[i], body.volume.positions, normals);
     model.vertex_collision_floor[i] = std::isfinite(c.height) ? std::min(0.0, c.height) : 0.0;
   });
@@ -229,12 +236,12 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     const double m = vertex_moisture_ratio[i];
     return std::isfinite(m) ? std::clamp(m, 0.0, 1.0) : 1.0;
   };
-  parallel_for(0, n, [&](std::size_t i) {
+  for_each_item(n, [&](std::size_t i) {
     m_tracking_points[i] = tracking_point(tracking, i, volume_node_positions);
     m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
   });
   m_edge_stiffness.resize(model.stretch.size());
-  parallel_for(0, model.stretch.size(), [&](std::size_t e) {
+  for_each_item(model.stretch.size(), [&](std::size_t e) {
     const auto& [a, b] = model.stretch.edge_vertices[e];
     const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
     m_edge_stiffness[e] = per_iteration(
@@ -242,7 +249,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
         iterations);
   });
   m_pair_stiffness.resize(model.bending.size());
-  parallel_for(0, model.bending.size(), [&](std::size_t b) {
+  for_each_item(model.bending.size(), [&](std::size_t b) {
     double m = 0.0;
     for (Index q : model.bending.quad_vertices[b]) m += 0.25 * moisture(static_cast<std::size_t>(q));
     m_pair_stiffness[b] = per_iteration(
@@ -251,7 +258,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   });
 
   // 2. External forces and the pull of inward-facing connections (eq. 34), before damping.
-  parallel_for(0, n, [&](std::size_t i) {
+  for_each_item(n, [&](std::size_t i) {
     if (w[i] > 0.0) v[i] += dt_s * settings.gravity_mm_per_s2;
     const Vec3& t = m_tracking_points[i];
     const double k = m_tracking_stiffness[i];
@@ -260,10 +267,11 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     // vertex lies under the boundary (section 8.2).
     m_outward[i] = face_normal.dot(t - x[i]) > 0.0 ? 1 : 0;
     if (m_outward[i]) {
-      m_attach_radius[i] =
-          tracking_radius(tracking.rest_distance[i], settings.slippage.initial_stiffness, model.r_max_mm);
+      // One-sided attachment: stiffness 1 and a constant radius, the connection's rest length.
+      m_attach_radius[i] = tracking.rest_distance[i];
     } else {
-      m_attach_radius[i] = tracking_radius(tracking.rest_distance[i], k, model.r_max_mm);
+      // r_max grows in proportion to the moisture loss (section 8.2), r_j = (1 - k_j) r_max (eq. 33).
+      m_attach_radius[i] = tracking_radius(tracking.rest_distance[i], k, (1.0 - moisture(i)) * model.r_max_mm);
       if (k > 0.0) {
         const Vec3 pull = tracking_pull(x[i], t, m_attach_radius[i], k);
         if (pull.squaredNorm() > 0.0) {
@@ -280,13 +288,13 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   } else {
     m_frame_velocities.resize(n);
     const bool first = state.tracking_points.size() != n;
-    parallel_for(0, n, [&](std::size_t i) {
+    for_each_item(n, [&](std::size_t i) {
       m_frame_velocities[i] = first ? Vec3::Zero() : Vec3((m_tracking_points[i] - state.tracking_points[i]) / dt_s);
     });
     damp_relative_velocities(v, m_frame_velocities, settings.wrinkle.damping);
   }
   m_predicted.resize(n);
-  parallel_for(0, n, [&](std::size_t i) { m_predicted[i] = w[i] > 0.0 ? Vec3(x[i] + dt_s * v[i]) : x[i]; });
+  for_each_item(n, [&](std::size_t i) { m_predicted[i] = w[i] > 0.0 ? Vec3(x[i] + dt_s * v[i]) : x[i]; });
   std::vector<Vec3>& p = m_predicted;
 
   // 4. Collision constraints for the predicted positions: a plane through the closest boundary point for every
@@ -295,7 +303,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   m_plane_normals.resize(n);
   m_has_plane.assign(n, 0);
   const double margin = model.mean_edge_mm;
-  parallel_for(0, n, [&](std::size_t i) {
+  for_each_item(n, [&](std::size_t i) {
     const Contact c = detect_contact(model, i, p[i], volume_node_positions, m_face_normals);
     if (c.height < model.vertex_collision_floor[i] + margin && c.normal.squaredNorm() > 0.0) {
       m_plane_points[i] = c.point;
@@ -341,7 +349,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
           },
           constraint_grain);
     }
-    parallel_for(0, n, [&](std::size_t i) {
+    for_each_item(n, [&](std::size_t i) {
       if (w[i] <= 0.0) return;
       if (m_outward[i] && m_tracking_stiffness[i] > 0.0)
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
@@ -354,7 +362,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
 
   // 6. Velocities from the position change.
   std::vector<std::uint8_t> bad(n, 0);
-  parallel_for(0, n, [&](std::size_t i) {
+  for_each_item(n, [&](std::size_t i) {
     if (!p[i].allFinite()) bad[i] = 1;
     v[i] = (p[i] - x[i]) / dt_s;
     x[i] = p[i];

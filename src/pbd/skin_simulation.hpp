@@ -6,7 +6,9 @@
 ///     tracking stiffness k_j from the skin's moisture (slippage, eq. 35) and the stretch and bending
 ///     stiffness from it (dry skin is stiffer: it turns leathery);
 ///  2. v += dt w f_ext; for inward-facing connections farther than r_j = (1 - k_j) r_max (eq. 33) from their
-///     tracking point, the pulling correction of eq. 34 is added to the velocity;
+///     tracking point, the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
+///     change in proportion to moisture loss" (section 8.2): a vertex with moisture ratio m uses (1 - m) r_max,
+///     so fresh skin is held at its rest distance and dry skin may lift off by up to (1 - k_j) r_max;
 ///  3. velocity damping (k_damping; by default of the skin's velocity relative to its tracking point's, see
 ///     velocity_damping.hpp), predicted positions p = x + dt v;
 ///  4. collision constraints against the deforming volume boundary for the predicted positions;

@@ -104,11 +104,11 @@ TEST(SkinSimulation, PerturbedSkinSettlesWithoutWaves) {
   // The motion dies out and the skin comes to rest near where it was.
   EXPECT_LT(energy.back(), 1e-6 * e0);
   EXPECT_LT(*std::max_element(energy.begin() + 50, energy.end()), 1e-2 * e0);
-  // Each vertex stays within reach of its tracking point: |x - x_rest| <= |x - t| + |t - x_rest| <= r_j + l_i.
+  // Each vertex stays within reach of its tracking point: |x - x_rest| <= |x - t| + |t - x_rest| <= r_j + l_i,
+  // with r_j = l_i for fresh skin.
   for (std::size_t i = 0; i < state.positions.size(); ++i) {
     const double l = model.tracking.rest_distance[i];
-    EXPECT_LE((state.positions[i] - model.vertex_rest_position[i]).norm(), 2.0 * l + model.r_max_mm + 1e-6)
-        << "vertex " << i;
+    EXPECT_LE((state.positions[i] - model.vertex_rest_position[i]).norm(), 2.0 * l + 1e-3) << "vertex " << i;
   }
 }
 
@@ -130,7 +130,7 @@ TEST(SkinSimulation, TrackingHoldsTheSkinWithinTheRadius) {
   double worst = -INFINITY;
   for (std::size_t i = 0; i < t.size(); ++i)
     worst = std::max(worst, tracking_value(state.positions[i], t[i],
-                                           tracking_radius(model.tracking.rest_distance[i], k, model.r_max_mm)));
+                                           tracking_radius(model.tracking.rest_distance[i], k, 0.8 * model.r_max_mm)));
   EXPECT_LT(worst, 0.02 * model.r_max_mm) << "a skin vertex is farther than r_j from its tracking point";
   EXPECT_LT(report.max_tracking_excess_mm, 0.02 * model.r_max_mm);
   EXPECT_EQ(report.slipped, 0u);
