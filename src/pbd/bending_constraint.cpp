@@ -16,16 +16,21 @@ double wrap_angle(double a) {
   return a;
 }
 
+/// theta from the unnormalised face normals and the edge: atan2((nA x nB) . e, (nA . nB) |e|), the same angle
+/// as with unit vectors (both arguments carry the factor |nA| |nB| |e|) without three square roots.
+double angle_from_normals(const Vec3& na, const Vec3& nb, const Vec3& e, double edge_length) {
+  return std::atan2(na.cross(nb).dot(e), na.dot(nb) * edge_length);
+}
+
 }  // namespace
 
 double dihedral_angle(const Quad& x) {
   const Vec3 e = x[3] - x[2];
   const Vec3 na = (x[2] - x[0]).cross(x[3] - x[0]);
   const Vec3 nb = (x[3] - x[1]).cross(x[2] - x[1]);
-  const double la = na.norm(), lb = nb.norm(), le = e.norm();
-  if (la <= 0.0 || lb <= 0.0 || le <= 0.0) return 0.0;
-  const Vec3 a = na / la, b = nb / lb;
-  return std::atan2(a.cross(b).dot(e / le), a.dot(b));
+  const double le = e.norm();
+  if (na.squaredNorm() <= 0.0 || nb.squaredNorm() <= 0.0 || le <= 0.0) return 0.0;
+  return angle_from_normals(na, nb, e, le);
 }
 
 DihedralGradient dihedral_angle_gradient(const Quad& x) {
@@ -35,13 +40,14 @@ DihedralGradient dihedral_angle_gradient(const Quad& x) {
   const Vec3 nb = (x[3] - x[1]).cross(x[2] - x[1]);
   const double la2 = na.squaredNorm(), lb2 = nb.squaredNorm(), le = e.norm();
   if (la2 <= 0.0 || lb2 <= 0.0 || le <= 0.0) return out;
-  out.angle = dihedral_angle(x);
+  out.angle = angle_from_normals(na, nb, e, le);
   // Bridson et al. 2003: |e| nA / |nA|^2 is the wing's gradient up to sign (nA / |nA| over the wing's height).
   const Vec3 a = na / la2, b = nb / lb2;
+  const double inv_le = 1.0 / le;
   out.gradient[0] = -le * a;
   out.gradient[1] = -le * b;
-  out.gradient[2] = -((x[0] - x[3]).dot(e) / le * a + (x[1] - x[3]).dot(e) / le * b);
-  out.gradient[3] = -((x[2] - x[0]).dot(e) / le * a + (x[2] - x[1]).dot(e) / le * b);
+  out.gradient[2] = -((x[0] - x[3]).dot(e) * inv_le * a + (x[1] - x[3]).dot(e) * inv_le * b);
+  out.gradient[3] = -((x[2] - x[0]).dot(e) * inv_le * a + (x[2] - x[1]).dot(e) * inv_le * b);
   return out;
 }
 
