@@ -1,0 +1,45 @@
+#include "pbd/stretch_constraint.hpp"
+
+#include "core/error.hpp"
+#include "geometry/mesh_topology.hpp"
+
+namespace forensim {
+
+double stretch_value(const Vec3& p0, const Vec3& p1, double rest_length) {
+  return (p0 - p1).norm() - rest_length;
+}
+
+PairCorrection project_stretch(const Vec3& p0, const Vec3& p1, double w0, double w1, double rest_length,
+                               double stiffness) {
+  PairCorrection out;
+  const double w = w0 + w1;
+  const Vec3 d = p0 - p1;
+  const double length = d.norm();
+  if (w <= 0.0 || length <= 0.0) return out;
+  const Vec3 n = d / length;
+  const double s = stiffness * (length - rest_length) / w;
+  out.dp0 = -w0 * s * n;
+  out.dp1 = w1 * s * n;
+  return out;
+}
+
+StretchConstraints make_stretch_constraints(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
+                                            const std::string& source) {
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (Index v : triangles[t])
+      require_input(v >= 0 && static_cast<std::size_t>(v) < positions.size(), source, "triangle " + std::to_string(t),
+                    "has a vertex index out of range");
+  StretchConstraints out;
+  out.edge_vertices = unique_edges(triangles);
+  out.edge_rest_length.reserve(out.edge_vertices.size());
+  for (std::size_t e = 0; e < out.edge_vertices.size(); ++e) {
+    const auto& [a, b] = out.edge_vertices[e];
+    const double length = (positions[static_cast<std::size_t>(a)] - positions[static_cast<std::size_t>(b)]).norm();
+    require_input(length > 0.0, source, "edge " + std::to_string(a) + "-" + std::to_string(b),
+                  "has zero length (weld the mesh first)");
+    out.edge_rest_length.push_back(length);
+  }
+  return out;
+}
+
+}  // namespace forensim

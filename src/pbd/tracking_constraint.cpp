@@ -1,0 +1,33 @@
+#include "pbd/tracking_constraint.hpp"
+
+#include <algorithm>
+
+namespace forensim {
+
+double tracking_value(const Vec3& p, const Vec3& t, double radius) {
+  return (t - p).norm() - radius;
+}
+
+PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double w_t, double radius, double stiffness) {
+  PairCorrection out;
+  const double w = w_p + w_t;
+  const Vec3 d = p - t;
+  const double length = d.norm();
+  const double c = length - radius;
+  if (w <= 0.0 || length <= 0.0 || c <= 0.0) return out;
+  const Vec3 n = d / length;
+  const double s = stiffness * c / w;
+  out.dp0 = -w_p * s * n;
+  out.dp1 = w_t * s * n;
+  return out;
+}
+
+Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness) {
+  return project_tracking(p, t, 1.0, 0.0, radius, stiffness).dp0;
+}
+
+double tracking_radius(double rest_distance, double stiffness, double r_max) {
+  return rest_distance + (1.0 - std::clamp(stiffness, 0.0, 1.0)) * r_max;
+}
+
+}  // namespace forensim

@@ -1,0 +1,49 @@
+#include "pbd/tracking_constraint.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace forensim;
+
+TEST(TrackingConstraint, OneSidedProjectionReducesTheValue) {
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3 p(u(rng), u(rng), u(rng)), t(u(rng), u(rng), u(rng));
+    const double radius = 0.5;
+    const double before = tracking_value(p, t, radius);
+    const PairCorrection d = project_tracking(p, t, 1.0, 0.0, radius, 0.4);
+    const double after = tracking_value(p + d.dp0, t + d.dp1, radius);
+    if (before <= 0.0) {
+      // Within the radius the constraint is satisfied: nothing moves.
+      EXPECT_EQ(d.dp0, Vec3::Zero());
+    } else {
+      EXPECT_NEAR(after, 0.6 * before, 1e-12);
+      // The tracking point of the volume (w_t = 0) stays where it is.
+      EXPECT_EQ(d.dp1, Vec3::Zero());
+    }
+  }
+}
+
+TEST(TrackingConstraint, ConservesLinearMomentumForEqualMasses) {
+  const Vec3 p(1, 2, 3), t(0, 0, 0);
+  const PairCorrection d = project_tracking(p, t, 1.0, 1.0, 1.0, 1.0);
+  EXPECT_LT((d.dp0 + d.dp1).norm(), 1e-14);
+  EXPECT_NEAR(tracking_value(p + d.dp0, t + d.dp1, 1.0), 0.0, 1e-12);
+}
+
+TEST(TrackingConstraint, PullPointsToTheTrackingPointBeyondTheRadius) {
+  const Vec3 t(0, 0, 0);
+  // eq. 34: -k C n beyond r_j, zero within.
+  const Vec3 pull = tracking_pull(Vec3(0, 0, 3), t, 1.0, 0.5);
+  EXPECT_NEAR((pull - Vec3(0, 0, -1.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(tracking_pull(Vec3(0, 0.5, 0), t, 1.0, 0.5), Vec3::Zero());
+}
+
+TEST(TrackingConstraint, RadiusGrowsAsTheStiffnessFalls) {
+  // eq. 33, measured beyond the rest distance l_i.
+  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 1.0, 2.0), 0.25);
+  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.5, 2.0), 1.25);
+  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.0, 2.0), 2.25);
+}
