@@ -191,6 +191,10 @@ double half_at(double value, double scale) {
 
 }  // namespace
 
+static LandmarkDetection detect_with_frame(const TriMesh& reference, const LandmarkSet& reference_landmarks,
+                                           const HeadFrame* reference_frame, const TriMesh& target,
+                                           const LandmarkDetectionOptions& options);
+
 std::string to_string(LandmarkRule rule) {
   switch (rule) {
     case LandmarkRule::transfer:
@@ -258,6 +262,19 @@ LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& 
   }
   require_input(reference_landmarks.contains("or_L") || reference_landmarks.contains("or_R"), "reference landmarks",
                 "or_L", "missing (the target's Frankfort plane needs po_L, po_R and or_L or or_R)");
+  return detect_with_frame(reference, reference_landmarks, nullptr, target, options);
+}
+
+LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
+                                   const HeadFrame& reference_frame, const TriMesh& target,
+                                   const LandmarkDetectionOptions& options) {
+  return detect_with_frame(reference, reference_landmarks, &reference_frame, target, options);
+}
+
+static LandmarkDetection detect_with_frame(const TriMesh& reference, const LandmarkSet& reference_landmarks,
+                                           const HeadFrame* reference_frame, const TriMesh& target,
+                                           const LandmarkDetectionOptions& options) {
+  require_input(!reference_landmarks.empty(), "reference landmarks", "", "the set is empty");
   require_input(options.residual_scale_mm > 0.0, "landmark detection", "residual_scale_mm", "must be positive");
   require_input(options.symmetry_scale_mm > 0.0, "landmark detection", "symmetry_scale_mm", "must be positive");
   require_input(options.residual_radius_mm > 0.0, "landmark detection", "residual_radius_mm", "must be positive");
@@ -268,7 +285,27 @@ LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& 
   const auto& ls = reference_landmarks.landmarks();
   LandmarkSet transferred("transferred");
   for (const Landmark& l : ls) transferred.add({l.name, reg.map(l.position_mm), LandmarkSource::detected, 1.0});
-  result.frame = head_frame_from_skull(target, transferred, options.symmetry);
+  if (reference_frame) {
+    const Mat3 r = reg.similarity.rotation;
+    const Plane initial{reg.map(reference_frame->midsagittal.point), r * reference_frame->midsagittal.normal};
+    const Plane midsagittal = fit_symmetry_plane(target, initial, options.symmetry).plane;
+    HeadFrame& f = result.frame;
+    const Vec3 z = (r * reference_frame->axes.col(2)).normalized();
+    Vec3 x = midsagittal.normal - midsagittal.normal.dot(z) * z;
+    require_input(x.norm() > 1e-6, "target skull", "", "the midsagittal plane is parallel to the Frankfort plane");
+    x.normalize();
+    if (x.dot(r * reference_frame->axes.col(0)) < 0.0) x = -x;
+    f.axes.col(0) = x;
+    f.axes.col(1) = z.cross(x);
+    f.axes.col(2) = z;
+    f.origin = midsagittal.project(reg.map(reference_frame->origin));
+    f.frankfort = Plane{f.origin, z};
+    f.midsagittal = midsagittal;
+    f.perpendicularity_deg =
+        std::abs(90.0 - std::acos(std::clamp(midsagittal.normal.dot(z), -1.0, 1.0)) * 180.0 / M_PI);
+  } else {
+    result.frame = head_frame_from_skull(target, transferred, options.symmetry);
+  }
   const HeadFrame& frame = result.frame;
 
   const SurfaceNormals normals = normals_of(target);

@@ -97,6 +97,13 @@ struct LandmarkDetection {
 LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
                                    const TriMesh& target, const LandmarkDetectionOptions& options = {});
 
+/// As detect_landmarks, for a reference without the Frankfort landmarks: the target's frame is the reference's
+/// head frame `reference_frame` carried through the similarity, its midsagittal plane refitted to the target
+/// (fit_symmetry_plane). Throws InputError naming "reference landmarks" when the set is empty.
+LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
+                                   const HeadFrame& reference_frame, const TriMesh& target,
+                                   const LandmarkDetectionOptions& options = {});
+
 /// Refines every landmark of `rough` (roughly placed on `mesh`) by its definition in `frame` without
 /// registration: for building a reference skull's landmarks from rough guesses. Same order and names; source
 /// detected, confidence the definition term.

@@ -121,3 +121,18 @@ TEST(LandmarkDetection, BadInputIsRejected) {
   EXPECT_FALSE(landmark_definition("not a landmark").has_value());
   EXPECT_EQ(landmark_definition("left zygion")->site, "zy");
 }
+
+TEST(LandmarkDetection, ReferenceFrameReplacesTheFrankfortLandmarks) {
+  const TriMesh reference = skull_mesh(5);
+  LandmarkSet reference_landmarks = refine_landmarks(reference, identity_frame(), rough_skull_landmarks());
+  for (const char* name : {"po_L", "po_R", "or_L", "or_R"}) reference_landmarks.remove(name);
+  const Similarity truth = known_similarity();
+  const TriMesh target = moved(reference, truth, true);
+  const LandmarkDetection detection = detect_landmarks(reference, reference_landmarks, identity_frame(), target);
+  EXPECT_LT((detection.frame.axes - truth.rotation).norm(), 0.05);
+  EXPECT_LT((detection.frame.axes.transpose() * detection.frame.axes - Mat3::Identity()).norm(), 1e-12);
+  for (std::size_t i = 0; i < reference_landmarks.size(); ++i) {
+    const Vec3 known = truth.apply(deform(reference_landmarks[i].position_mm));
+    EXPECT_LT((detection.landmarks[i].position_mm - known).norm(), 2.0) << reference_landmarks[i].name;
+  }
+}
