@@ -158,7 +158,17 @@ RefinedLandmark refine(const TriMesh& mesh, const SurfaceNormals& normals, const
       best = i;
     }
   }
-  if (best == c.points.size()) return out;  // nothing admissible: keep the transferred point
+  if (best == c.points.size()) {
+    // Nothing admissible: the transferred point, on the profile for midline sites.
+    double nearest_profile = std::numeric_limits<double>::infinity();
+    for (const Vec3& p : c.points) {
+      if ((p - start).squaredNorm() < nearest_profile) {
+        nearest_profile = (p - start).squaredNorm();
+        out.position_mm = p;
+      }
+    }
+    return out;
+  }
   out.position_mm = c.points[best];
   out.at_search_limit = (out.position_mm - start).norm() > 0.85 * radius;
   // Sharpness: the smallest drop of the height over the ring 0.5-1 radius around the extremum.
@@ -349,6 +359,71 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
     result.details.push_back(d);
   }
   return result;
+}
+
+LandmarkSet locate_landmarks(const TriMesh& skull, const HeadFrame& frame) {
+  require_input(!skull.triangles.empty(), "skull", "", "the mesh has no triangles");
+  std::vector<Vec3> head(skull.positions.size());
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    head[i] = frame.to_head(skull.positions[i]);
+    lo = lo.cwiseMin(head[i]);
+    hi = hi.cwiseMax(head[i]);
+  }
+  const double height = hi.z() - lo.z();
+  const double depth = hi.y() - lo.y();
+  const auto z_share = [&](double share) { return lo.z() + share * height; };
+  const auto y_share = [&](double share) { return lo.y() + share * depth; };
+  // The midsagittal profile in head coordinates.
+  const SurfaceNormals normals = normals_of(skull);
+  const double reach = 2.0 * (hi - lo).norm();
+  const Candidates profile = midline_profile(skull, normals.face, frame.midsagittal, frame.origin, reach);
+  LandmarkSet rough("located");
+  const auto best_of = [&](const std::vector<Vec3>& points_world, const Vec3& dir_head, auto&& inside) {
+    std::optional<Vec3> best;
+    double best_h = -std::numeric_limits<double>::infinity();
+    for (const Vec3& w : points_world) {
+      const Vec3 h = frame.to_head(w);
+      if (!inside(h)) continue;
+      const double value = dir_head.dot(h);
+      if (value > best_h) {
+        best_h = value;
+        best = w;
+      }
+    }
+    return best;
+  };
+  const auto add = [&](const std::string& name, const std::optional<Vec3>& p) {
+    if (p) rough.add({name, *p, LandmarkSource::detected, 1.0});
+  };
+  const auto anywhere = [](const Vec3&) { return true; };
+  add("v", best_of(profile.points, Vec3(0, 0, 1), anywhere));
+  add("op", best_of(profile.points, Vec3(0, 1, 0), anywhere));
+  add("g", best_of(profile.points, Vec3(0, -1, 0), [&](const Vec3& h) { return h.z() > z_share(0.55); }));
+  const auto chin = [&](const Vec3& h) { return h.z() < z_share(0.2) && h.y() < y_share(0.5); };
+  add("pg", best_of(profile.points, Vec3(0, -1, 0), chin));
+  add("gn", best_of(profile.points, Vec3(0, -1, -1).normalized(), chin));
+  add("me", best_of(profile.points, Vec3(0, 0, -1), chin));
+  const auto arch = [&](const Vec3& h) {
+    return h.z() > z_share(0.35) && h.z() < z_share(0.6) && h.y() < y_share(0.5);
+  };
+  add("zy_L", best_of(skull.positions, Vec3(1, 0, 0), arch));
+  add("zy_R", best_of(skull.positions, Vec3(-1, 0, 0), arch));
+  const auto angle = [&](const Vec3& h) { return h.z() < z_share(0.3) && h.y() > y_share(0.25); };
+  add("go_L", best_of(skull.positions, Vec3(0.4, 0.65, -0.65).normalized(), angle));
+  add("go_R", best_of(skull.positions, Vec3(-0.4, 0.65, -0.65).normalized(), angle));
+  // Refined until the points stop moving, so that each is a local extremum of its definition (a region's boundary
+  // may have cut a slope).
+  LandmarkSet located = refine_landmarks(skull, frame, rough);
+  for (int round = 0; round < 10; ++round) {
+    LandmarkSet next = refine_landmarks(skull, frame, located);
+    bool moved = false;
+    for (std::size_t i = 0; i < next.size(); ++i) moved = moved || next[i].position_mm != located[i].position_mm;
+    located = std::move(next);
+    if (!moved) break;
+  }
+  return located;
 }
 
 }  // namespace forensim

@@ -109,6 +109,16 @@ LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& 
 /// detected, confidence the definition term.
 LandmarkSet refine_landmarks(const TriMesh& mesh, const HeadFrame& frame, const LandmarkSet& rough);
 
+/// Landmarks located on a skull by their definitions alone, without a reference: global extrema of the skull in
+/// `frame` within regions given as shares of the skull's height H (head z) and depth (head y): vertex (highest
+/// profile point), opisthocranion (most posterior profile point), glabella (most anterior profile point above
+/// 0.55 H), pogonion, gnathion and menton (most anterior, anterior-inferior and lowest profile points below 0.2 H
+/// in the anterior half), zygia (most lateral points between 0.35 and 0.6 H in the anterior half), gonia (the
+/// gonion direction below 0.3 H in the posterior three quarters); then refine_landmarks repeated until
+/// no point moves (at most 11 rounds), so each is a local extremum. For building a reference
+/// skull's landmarks when no landmarked reference exists. Throws InputError for a mesh without triangles.
+LandmarkSet locate_landmarks(const TriMesh& skull, const HeadFrame& frame);
+
 std::string to_string(LandmarkRule rule);
 
 }  // namespace forensim
