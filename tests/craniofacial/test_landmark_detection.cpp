@@ -90,7 +90,7 @@ TEST(LandmarkDetection, TransferredAndRefinedLandmarksLandOnTheKnownPositions) {
 }
 
 TEST(LandmarkDetection, SameLandmarksAtAnyThreadCount) {
-  const TriMesh reference = skull_mesh(5);
+  const TriMesh reference = skull_mesh(4);
   const LandmarkSet reference_landmarks = refine_landmarks(reference, identity_frame(), rough_skull_landmarks());
   const TriMesh target = moved(reference, known_similarity(), true);
   set_thread_count(1);

@@ -83,7 +83,7 @@ TEST(SkullRegistration, NonRigidStageFollowsASmoothDeformation) {
 }
 
 TEST(SkullRegistration, SameResultAtAnyThreadCount) {
-  const TriMesh reference = skull_mesh(4);
+  const TriMesh reference = skull_mesh(3);
   const TriMesh target = moved(reference, known_similarity(), true);
   set_thread_count(1);
   const SkullRegistration one = register_skull(reference, target);
