@@ -63,8 +63,67 @@ Image erode_shape(const Image& shape, const std::vector<int>& widths, ErosionAxi
   return out;
 }
 
+namespace {
+
+bool is_binary(const Image& shape) {
+  if (shape.channels() != 1) return false;
+  for (float v : shape.data())
+    if (v != 0.0f && v != 1.0f) return false;
+  return true;
+}
+
+// Algorithm 3.1 on a 0/1 shape: the minimum over a window is 0 exactly when a 0 lies in it, so a texel
+// is 0 when its nearest 0 along the line is within half its kernel width. Widths are drawn (as
+// random_erosion_widths does) only for texels whose nearest 0 is within the largest half-width.
+Image erode_binary(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis) {
+  const int w = shape.width(), h = shape.height();
+  Image out(w, h, 1, 0.0f, PixelEncoding::data);
+  const bool along_x = axis == ErosionAxis::x;
+  const int lines = along_x ? h : w, length = along_x ? w : h;
+  const std::size_t step = along_x ? 1 : static_cast<std::size_t>(w);
+  const int span = m_max - m_min + 1;
+  const int max_edge = erosion_kernel_width(m_max) / 2;
+  const float* in = shape.data().data();
+  float* o = out.data().data();
+  parallel_for(
+      0, static_cast<std::size_t>(lines),
+      [&](std::size_t line) {
+        const std::size_t first = along_x ? line * static_cast<std::size_t>(w) : line;
+        thread_local std::vector<int> right;
+        right.assign(static_cast<std::size_t>(length), 0);
+        int next = std::numeric_limits<int>::max() / 2;  // distance to the nearest 0 at or after i
+        for (int i = length - 1; i >= 0; --i) {
+          next = in[first + static_cast<std::size_t>(i) * step] == 0.0f ? 0 : next + 1;
+          right[static_cast<std::size_t>(i)] = next;
+        }
+        int previous = std::numeric_limits<int>::max() / 2;  // distance to the nearest 0 at or before i
+        for (int i = 0; i < length; ++i) {
+          const std::size_t at = first + static_cast<std::size_t>(i) * step;
+          previous = in[at] == 0.0f ? 0 : previous + 1;
+          const int nearest = std::min(previous, right[static_cast<std::size_t>(i)]);
+          float value = 1.0f;
+          if (nearest == 0) {
+            value = 0.0f;
+          } else if (nearest <= max_edge) {
+            const int m = m_min + std::min(span - 1, static_cast<int>(hash_uniform(seed, at) * span));
+            if (nearest <= erosion_kernel_width(m) / 2) value = 0.0f;
+          }
+          o[at] = value;
+        }
+      },
+      4);
+  return out;
+}
+
+}  // namespace
+
 Image erode_shape(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis) {
-  return erode_shape(shape, random_erosion_widths(shape.width(), shape.height(), m_min, m_max, seed), axis);
+  if (!is_binary(shape)) {
+    return erode_shape(shape, random_erosion_widths(shape.width(), shape.height(), m_min, m_max, seed), axis);
+  }
+  require_input(m_min >= 1 && m_min <= m_max && m_max <= 4096, "random_erosion_widths", "range",
+                "needs 1 <= m_min <= m_max <= 4096, got " + std::to_string(m_min) + ".." + std::to_string(m_max));
+  return erode_binary(shape, m_min, m_max, seed, axis);
 }
 
 }  // namespace forensim

@@ -27,7 +27,8 @@ enum class ErosionAxis { x, y };
 /// single-channel data image. widths must hold width * height odd positive values (InputError otherwise).
 Image erode_shape(const Image& shape, const std::vector<int>& widths, ErosionAxis axis = ErosionAxis::x);
 
-/// erode_shape with random_erosion_widths(shape size, m_min, m_max, seed).
+/// erode_shape with random_erosion_widths(shape size, m_min, m_max, seed). On a 0/1 shape (a wound mask) the
+/// same result in time linear in the texels, widths drawn only near the shape's edges.
 Image erode_shape(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis = ErosionAxis::x);
 
 }  // namespace forensim

@@ -1,6 +1,7 @@
 #include "texture/value_noise.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -31,6 +32,42 @@ Taps4 axis_taps(int p, long long period, int size) {
   t.s[3] = static_cast<int>(s3);
   t.blend = static_cast<double>(p - s1) / static_cast<double>(period);
   return t;
+}
+
+// Eq. 3.4 (the arithmetic of cubic_interpolate, inlined so loops over rows vectorise).
+inline double cubic(double v0, double v1, double v2, double v3, double t) {
+  const double p = (v3 - v2) - (v0 - v1);
+  const double q = (v0 - v1) - p;
+  const double r = v2 - v0;
+  return ((p * t + q) * t + r) * t + v1;
+}
+
+// The lattice an octave of period P reads for coordinates [p0, p0 + n) of an axis of `size` texels: the taps of
+// eqs. 3.2 and 3.3 at p are the lattice positions s1 - P, s1, s1 + P, s1 + 2P (s1 = floor(p / P) P) taken
+// modulo size, so they are consecutive slots of one run: slot k holds position s1(p0) + (k - 1) P, and tap j
+// of p is slot (s1(p) - s1(p0)) / P + j.
+struct AxisLattice {
+  std::vector<int> coords;  // per slot, the texel coordinate (modulo size)
+  std::vector<int> first;   // per output coordinate, the slot of its tap 0
+  std::vector<double> blend;
+};
+
+void axis_lattice(int p0, int n, long long period, int size, AxisLattice& l) {
+  const long long s_first = (p0 / period) * period;
+  const long long s_last = ((p0 + n - 1) / period) * period;
+  const std::size_t slots = static_cast<std::size_t>((s_last - s_first) / period + 4);
+  l.coords.resize(slots);
+  for (std::size_t k = 0; k < slots; ++k) {
+    const long long pos = s_first + (static_cast<long long>(k) - 1) * period;
+    l.coords[k] = static_cast<int>(((pos % size) + size) % size);
+  }
+  l.first.resize(static_cast<std::size_t>(n));
+  l.blend.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const Taps4 t = axis_taps(p0 + i, period, size);
+    l.first[static_cast<std::size_t>(i)] = static_cast<int>((t.s[1] - s_first) / period);
+    l.blend[static_cast<std::size_t>(i)] = t.blend;
+  }
 }
 
 }  // namespace
@@ -152,6 +189,108 @@ Image value_noise(const Image& base, const ValueNoiseParams& params) {
 
 Image value_noise(int width, int height, const ValueNoiseParams& params) {
   return value_noise(value_noise_base(width, height, params.seed), params);
+}
+
+}  // namespace forensim
+
+namespace forensim {
+
+ValueNoiseField::ValueNoiseField(int width, int height, const ValueNoiseParams& params)
+    : m_width(width), m_height(height), m_params(params) {
+  const std::string source = "value noise parameters";
+  require_input(width > 0 && height > 0, "value noise field", "size", "must be positive");
+  require_input(params.octaves >= 1 && params.octaves <= 30, source, "octaves",
+                "must be in 1..30, is " + std::to_string(params.octaves));
+  require_input(params.first_octave >= 0 && params.first_octave + params.octaves <= 31, source, "first_octave",
+                "first_octave + octaves must be in 1..31");
+  require_input(std::isfinite(params.persistence) && params.persistence > 0.0, source, "persistence",
+                "must be a finite positive number");
+  require_input(params.bias >= 0.0 && params.bias <= 1.0, source, "bias", "must be in [0, 1]");
+  require_input(params.gain >= 0.0 && params.gain <= 1.0, source, "gain", "must be in [0, 1]");
+  double a = 1.0;
+  for (int k = 0; k < params.octaves; ++k) {
+    a *= params.persistence;
+    m_amplitude.push_back(a);
+    m_total_amplitude += a;
+  }
+  require_input(std::isfinite(m_total_amplitude) && m_total_amplitude > 0.0, source, "persistence",
+                "gives a non-finite or zero total amplitude");
+}
+
+void ValueNoiseField::evaluate(int x0, int y0, int w, int h, float* out, std::size_t stride) const {
+  const int xa = std::max(x0, 0), ya = std::max(y0, 0);
+  const int xb = std::min(x0 + w, m_width), yb = std::min(y0 + h, m_height);
+  if (xb <= xa || yb <= ya) return;
+  out += static_cast<std::size_t>(ya - y0) * stride + static_cast<std::size_t>(xa - x0);
+  x0 = xa;
+  y0 = ya;
+  w = xb - xa;
+  h = yb - ya;
+  const std::size_t sw = static_cast<std::size_t>(w);
+  struct Scratch {
+    std::vector<double> sum, horizontal;
+    std::vector<float> cache, lattice;
+    AxisLattice cols, rows;
+  };
+  thread_local Scratch s;
+  s.sum.assign(sw * static_cast<std::size_t>(h), 0.0);
+  // Base values of the rectangle itself, hashed on first read (-1: not yet).
+  s.cache.assign(sw * static_cast<std::size_t>(h), -1.0f);
+  const std::uint64_t seed = m_params.seed;
+  const std::uint64_t W = static_cast<std::uint64_t>(m_width);
+  auto base = [&](int x, int y) {
+    const auto value = [&] {
+      return static_cast<float>(hash_uniform(seed, static_cast<std::uint64_t>(y) * W + static_cast<std::uint64_t>(x)));
+    };
+    if (x < x0 || x >= x0 + w || y < y0 || y >= y0 + h) return value();
+    float& c = s.cache[static_cast<std::size_t>(y - y0) * sw + static_cast<std::size_t>(x - x0)];
+    if (c < 0.0f) c = value();
+    return c;
+  };
+  for (int k = 0; k < m_params.octaves; ++k) {
+    const int octave = m_params.first_octave + m_params.octaves - 1 - k;
+    const long long period = 1LL << octave;
+    axis_lattice(x0, w, period, m_width, s.cols);
+    axis_lattice(y0, h, period, m_height, s.rows);
+    const std::size_t nc = s.cols.coords.size(), nr = s.rows.coords.size();
+    s.lattice.resize(nc * nr);
+    for (std::size_t r = 0; r < nr; ++r)
+      for (std::size_t c = 0; c < nc; ++c) s.lattice[r * nc + c] = base(s.cols.coords[c], s.rows.coords[r]);
+    // Horizontal cubics of lines 15 to 18 on the lattice rows (blend 0 gives v1 exactly, as the cubic does).
+    s.horizontal.resize(nr * sw);
+    for (std::size_t r = 0; r < nr; ++r) {
+      const float* line = s.lattice.data() + r * nc;
+      double* hout = s.horizontal.data() + r * sw;
+      for (std::size_t x = 0; x < sw; ++x) {
+        const float* v = line + s.cols.first[x];
+        const double t = s.cols.blend[x];
+        hout[x] = t == 0.0 ? static_cast<double>(v[1]) : cubic(v[0], v[1], v[2], v[3], t);
+      }
+    }
+    // Line 19.
+    const double amplitude_k = m_amplitude[static_cast<std::size_t>(k)];
+    for (int y = 0; y < h; ++y) {
+      const double t = s.rows.blend[static_cast<std::size_t>(y)];
+      const double* r0 = s.horizontal.data() + static_cast<std::size_t>(s.rows.first[static_cast<std::size_t>(y)]) * sw;
+      const double* r1 = r0 + sw;
+      const double* r2 = r1 + sw;
+      const double* r3 = r2 + sw;
+      double* acc = s.sum.data() + static_cast<std::size_t>(y) * sw;
+      if (t == 0.0) {
+        for (std::size_t x = 0; x < sw; ++x) acc[x] += r1[x] * amplitude_k;
+      } else {
+        for (std::size_t x = 0; x < sw; ++x) acc[x] += cubic(r0[x], r1[x], r2[x], r3[x], t) * amplitude_k;
+      }
+    }
+  }
+  for (int y = 0; y < h; ++y) {
+    const double* acc = s.sum.data() + static_cast<std::size_t>(y) * sw;
+    float* o = out + static_cast<std::size_t>(y) * stride;
+    for (std::size_t x = 0; x < sw; ++x) {  // lines 20 to 22
+      const double v = std::clamp(acc[x] / m_total_amplitude, 0.0, 1.0);
+      o[x] = static_cast<float>(noise_gain(noise_bias(v, m_params.bias), m_params.gain));
+    }
+  }
 }
 
 }  // namespace forensim
