@@ -56,10 +56,11 @@ Image value_noise(int width, int height, const ValueNoiseParams& params);
 
 /// Algorithm 3.2 for a width x height noise evaluated on any rectangle of it, without building the base
 /// array: a lattice value is hashed where it is read (the same hash_uniform(seed, y * width + x) as
-/// value_noise_base). Same arithmetic in the same order as value_noise, so the same values bit for bit.
-/// For maps that read noise only in some tiles (a wound's noise layers are read inside the wound only):
-/// the cost is that of the texels evaluated, not of the texture. Set up once (parameter checks,
-/// amplitudes), then evaluate() from any number of threads.
+/// value_noise_base). Same steps as value_noise in 32-bit float, as the thesis's shaders compute them
+/// (value_noise works in double; the two agree within 1e-5). For maps that read noise only in some tiles (a
+/// wound's noise layers are read inside the wound only): the cost is that of the texels evaluated, not of
+/// the texture. Set up once (parameter checks, amplitudes), then evaluate() from any number of threads; a
+/// texel's value does not depend on the rectangle it is evaluated in.
 class ValueNoiseField {
  public:
   /// Throws InputError for bad parameters (as value_noise) or a non-positive size.

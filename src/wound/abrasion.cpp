@@ -33,13 +33,17 @@ ValueNoiseField thesis_noise(const WoundCanvas& c, const AbrasionParams& p, int 
   return ValueNoiseField(std::max(c.wound_box.width(), 1), std::max(c.wound_box.height(), 1), n);
 }
 
-// Noise of a layer over a tile (texel (x, y) of the tile's rect at (y - y0) * tile + x - x0; only texels
-// inside the wound's box are written). `slot` picks one of a thread's buffers.
-const float* noise_tile(const ValueNoiseField& f, const WoundCanvas& c, const TexelRect& r, int slot) {
+// Noise of a layer over the inside texels' box `ib` of the tile whose rect is `r` (texel (x, y) at
+// (y - r.y0) * tile + x - r.x0; other texels are left unset). `slot` picks one of a thread's buffers.
+const float* noise_tile(const ValueNoiseField& f, const WoundCanvas& c, const TexelRect& r, const TexelRect& ib,
+                        int slot) {
   thread_local std::array<std::vector<float>, 4> buffers;
   auto& b = buffers[static_cast<std::size_t>(slot)];
   b.resize(tiled_map_tile_texels);
-  f.evaluate(r.x0 - c.wound_box.x0, r.y0 - c.wound_box.y0, r.width(), r.height(), b.data(), tiled_map_tile);
+  f.evaluate(
+      ib.x0 - c.wound_box.x0, ib.y0 - c.wound_box.y0, ib.width(), ib.height(),
+      b.data() + static_cast<std::size_t>(ib.y0 - r.y0) * tiled_map_tile + static_cast<std::size_t>(ib.x0 - r.x0),
+      tiled_map_tile);
   return b.data();
 }
 
@@ -58,11 +62,11 @@ Row row(const WoundCanvas& c, int y) {
 }
 
 inline void put(std::uint16_t* out, std::size_t i, const Vec4f& v) {
-  for (int k = 0; k < 4; ++k) out[4 * i + static_cast<std::size_t>(k)] = to_unorm16(v[k]);
+  to_unorm16x4(v.data(), out + 4 * i);
 }
 
 inline void put(std::uint16_t* out, std::size_t i, const float* v) {
-  for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = to_unorm16(v[k]);
+  to_unorm16x4(v, out + 4 * i);
 }
 
 inline Vec4f load(const float* p) {
@@ -194,12 +198,33 @@ void VasodilationKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) 
   const AbrasionParams& p = m_params;
   const auto [a0, a1] = erosion_range(c, p, 3, 5);
   const auto [b0, b1] = erosion_range(c, p, 3, 10);
-  // Erode the shape over its box plus a margin wider than the kernels, so the outside stays in view.
+  // Algorithm 3.1 twice along rows over the shape's box plus a margin wider than the kernels (so the outside
+  // stays in view), widths drawn per texel of that crop; computed per tile row, over the tile's columns
+  // widened by both kernels' half-widths, which gives the crop's values there exactly.
   const TexelRect& box = c.wound_box;
   const int margin = b1 + 2;
   const int ex0 = std::max(box.x0 - margin, 0), ex1 = std::min(box.x1 + margin, c.width());
-  const Image shape_crop = c.shape.crop(ex0, box.y0, ex1 - ex0, box.height());
-  const Image eroded = erode_shape(erode_shape(shape_crop, a0, a1, mix64(c.seed ^ 0xE1)), b0, b1, mix64(c.seed ^ 0xE2));
+  const std::uint64_t crop_width = static_cast<std::uint64_t>(ex1 - ex0);
+  const std::uint64_t seed1 = mix64(c.seed ^ 0xE1), seed2 = mix64(c.seed ^ 0xE2);
+  const int reach = erosion_kernel_width(a1) / 2 + erosion_kernel_width(b1) / 2;
+  // Eroded mask of row y over [x0, x1) into out[x - x0] (only the columns of the crop, where the wound is).
+  auto eroded_row = [&](int y, int x0, int x1, float* out) {
+    thread_local std::vector<float> in, once, twice;
+    const int cx0 = std::max(x0, ex0), cx1 = std::min(x1, ex1);
+    if (cx1 <= cx0) return;
+    const int s0 = std::max(ex0, cx0 - reach), s1 = std::min(ex1, cx1 + reach);
+    const std::size_t n = static_cast<std::size_t>(s1 - s0);
+    in.resize(n);
+    once.resize(n);
+    twice.resize(n);
+    const float* shape = c.shape.pixel(0, y);
+    for (std::size_t i = 0; i < n; ++i) in[i] = shape[static_cast<std::size_t>(s0) + i] >= 0.5f ? 1.0f : 0.0f;
+    const std::uint64_t index0 =
+        static_cast<std::uint64_t>(y - box.y0) * crop_width + static_cast<std::uint64_t>(s0 - ex0);
+    erode_binary_line(in.data(), 1, static_cast<int>(n), a0, a1, seed1, index0, 1, once.data(), 1);
+    erode_binary_line(once.data(), 1, static_cast<int>(n), b0, b1, seed2, index0, 1, twice.data(), 1);
+    std::copy_n(twice.data() + (cx0 - s0), cx1 - cx0, out + (cx0 - x0));
+  };
   // Scrape marks: the noise stretched 6400% along y (chapter 4.3.2, Figure 4.6), sampled bilinearly with
   // wrap-around at (x + 0.5, (y + 0.5) / 64): only the noise rows those samples read are evaluated.
   const ValueNoiseField scrape = thesis_noise(c, p, 5, 0.09, 0.5, 0.43, 0x5C);
@@ -243,14 +268,17 @@ void VasodilationKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) 
         return Wants{t.inside > 0 || t.min_outside_mm <= glow_mm, t.inside > 0, false};
       },
       [&](const TileJob& job) {
+        float eroded[tiled_map_tile];
+        const TexelRect& ib = job.info->inside_box;
         for (int y = job.rect.y0; y < job.rect.y1; ++y) {
           const Row r = row(c, y);
+          if (y >= ib.y0 && y < ib.y1) eroded_row(y, job.rect.x0, job.rect.x1, eroded);
           for (int x = job.rect.x0; x < job.rect.x1; ++x) {
             const std::size_t i = job.at(x, y);
             if (job.reflection) job.reflection[i] = skin_reflection;
             if (r.shape[x] < 0.5f) {
               glow(job.color, i, r, x, glow_mm);
-            } else if (eroded.at(x - ex0, y - box.y0) >= 0.5f) {
+            } else if (eroded[x - job.rect.x0] >= 0.5f) {
               put(job.color, i, mul4(load(r.lower + 4 * x), wound_red));
               const RowTaps& t = taps[static_cast<std::size_t>(y - box.y0)];
               const float top = scrape_rows[static_cast<std::size_t>(t.a + x - box.x0)];
@@ -277,8 +305,8 @@ void ScabFormingKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) c
       },
       [&](const TileJob& job) {
         const bool wound = job.info->inside > 0;
-        const float* nb = wound ? noise_tile(bottom, c, job.rect, 0) : nullptr;
-        const float* ns = wound ? noise_tile(speckle, c, job.rect, 1) : nullptr;
+        const float* nb = wound ? noise_tile(bottom, c, job.rect, job.info->inside_box, 0) : nullptr;
+        const float* ns = wound ? noise_tile(speckle, c, job.rect, job.info->inside_box, 1) : nullptr;
         for (int y = job.rect.y0; y < job.rect.y1; ++y) {
           const Row r = row(c, y);
           for (int x = job.rect.x0; x < job.rect.x1; ++x) {
@@ -318,10 +346,10 @@ void ScabKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
       },
       [&](const TileJob& job) {
         const bool wound = job.info->inside > 0;
-        const float* nm = wound ? noise_tile(mask, c, job.rect, 0) : nullptr;
-        const float* nb = wound ? noise_tile(body, c, job.rect, 1) : nullptr;
-        const float* nr = wound ? noise_tile(rim_noise, c, job.rect, 2) : nullptr;
-        const float* ns = wound ? noise_tile(shine, c, job.rect, 3) : nullptr;
+        const float* nm = wound ? noise_tile(mask, c, job.rect, job.info->inside_box, 0) : nullptr;
+        const float* nb = wound ? noise_tile(body, c, job.rect, job.info->inside_box, 1) : nullptr;
+        const float* nr = wound ? noise_tile(rim_noise, c, job.rect, job.info->inside_box, 2) : nullptr;
+        const float* ns = wound ? noise_tile(shine, c, job.rect, job.info->inside_box, 3) : nullptr;
         for (int y = job.rect.y0; y < job.rect.y1; ++y) {
           const Row r = row(c, y);
           for (int x = job.rect.x0; x < job.rect.x1; ++x) {

@@ -155,6 +155,7 @@ void lerp_tiled_map_sets(const TiledMapSet& a, const TiledMapSet& b, float t, co
     throw InputError("lerp_tiled_map_sets", "upper skin", "must be RGBA of the sets' size");
   }
   if (&out == &a || &out == &b) throw InputError("lerp_tiled_map_sets", "out", "must not be one of the inputs");
+  t = std::clamp(t, 0.0f, 1.0f);
   const float s = 1.0f - t;
   const float ra = a.skin_reflection(), rb = b.skin_reflection();
   out.reset(a.width(), a.height(), ra == rb ? ra : ra * s + rb * t);
@@ -183,30 +184,35 @@ void lerp_tiled_map_sets(const TiledMapSet& a, const TiledMapSet& b, float t, co
         for (int y = r.y0; y < r.y1; ++y) {
           const std::size_t local = static_cast<std::size_t>(y - r.y0) * tiled_map_tile;
           if (job.map == 0) {
+            // In 16-bit code units: round(a (1 - t) + b t), a and b codes (the skin's value times 65535).
             const auto* pa = static_cast<const std::vector<std::uint16_t>*>(job.a);
             const auto* pb = static_cast<const std::vector<std::uint16_t>*>(job.b);
             std::uint16_t* o = static_cast<std::uint16_t*>(job.out) + 4 * local;
             const float* skin = upper_skin.pixel(r.x0, y);
             float va[4 * tiled_map_tile], vb[4 * tiled_map_tile];
             if (pa) {
-              for (std::size_t k = 0; k < 4 * n; ++k) va[k] = from_unorm16((*pa)[4 * local + k]);
+              const std::uint16_t* q = pa->data() + 4 * local;
+              for (std::size_t k = 0; k < 4 * n; ++k) va[k] = static_cast<float>(q[k]);
             } else {
-              std::copy_n(skin, 4 * n, va);
+              for (std::size_t k = 0; k < 4 * n; ++k) va[k] = std::clamp(skin[k], 0.0f, 1.0f) * 65535.0f;
             }
             if (pb) {
-              for (std::size_t k = 0; k < 4 * n; ++k) vb[k] = from_unorm16((*pb)[4 * local + k]);
+              const std::uint16_t* q = pb->data() + 4 * local;
+              for (std::size_t k = 0; k < 4 * n; ++k) vb[k] = static_cast<float>(q[k]);
             } else {
-              std::copy_n(skin, 4 * n, vb);
+              for (std::size_t k = 0; k < 4 * n; ++k) vb[k] = std::clamp(skin[k], 0.0f, 1.0f) * 65535.0f;
             }
-            for (std::size_t k = 0; k < 4 * n; ++k) o[k] = to_unorm16(va[k] * s + vb[k] * t);
+            for (std::size_t k = 0; k < 4 * n; ++k)
+              o[k] = static_cast<std::uint16_t>(static_cast<int>(va[k] * s + vb[k] * t + 0.5f));
           } else if (job.map == 1) {
             const auto* pa = static_cast<const std::vector<std::uint16_t>*>(job.a);
             const auto* pb = static_cast<const std::vector<std::uint16_t>*>(job.b);
             std::uint16_t* o = static_cast<std::uint16_t*>(job.out) + local;
+            const float ca = std::clamp(ra, 0.0f, 1.0f) * 65535.0f, cb = std::clamp(rb, 0.0f, 1.0f) * 65535.0f;
             for (std::size_t k = 0; k < n; ++k) {
-              const float va = pa ? from_unorm16((*pa)[local + k]) : ra;
-              const float vb = pb ? from_unorm16((*pb)[local + k]) : rb;
-              o[k] = to_unorm16(va * s + vb * t);
+              const float va = pa ? static_cast<float>((*pa)[local + k]) : ca;
+              const float vb = pb ? static_cast<float>((*pb)[local + k]) : cb;
+              o[k] = static_cast<std::uint16_t>(static_cast<int>(va * s + vb * t + 0.5f));
             }
           } else {
             const auto* pa = static_cast<const std::vector<float>*>(job.a);

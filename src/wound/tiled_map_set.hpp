@@ -14,6 +14,10 @@
 #include <memory>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "image/image.hpp"
 #include "wound/map_set.hpp"
 
@@ -29,6 +33,20 @@ inline std::uint16_t to_unorm16(float v) {
   v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
   return static_cast<std::uint16_t>(v * 65535.0f + 0.5f);
 }
+/// to_unorm16 of four values (an RGBA texel) at once.
+inline void to_unorm16x4(const float* v, std::uint16_t* out) {
+#if defined(__SSE2__)
+  __m128 x = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(v), _mm_setzero_ps()), _mm_set1_ps(1.0f));
+  x = _mm_add_ps(_mm_mul_ps(x, _mm_set1_ps(65535.0f)), _mm_set1_ps(0.5f));
+  // Truncate to int32, then to 16 bits: shifted into the signed range for the saturating pack and back.
+  const __m128i i = _mm_sub_epi32(_mm_cvttps_epi32(x), _mm_set1_epi32(32768));
+  const __m128i packed = _mm_xor_si128(_mm_packs_epi32(i, i), _mm_set1_epi16(static_cast<short>(0x8000)));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(out), packed);
+#else
+  for (int k = 0; k < 4; ++k) out[k] = to_unorm16(v[k]);
+#endif
+}
+
 /// Value of a 16-bit unorm code.
 inline float from_unorm16(std::uint16_t q) {
   return static_cast<float>(q) * (1.0f / 65535.0f);
@@ -91,10 +109,10 @@ class TiledMapSet {
   std::vector<std::shared_ptr<std::vector<float>>> m_spare_height;
 };
 
-/// out = a (1 - t) + b t, tile by tile: tiles where a and b are both skin stay skin, tiles a and b share
-/// are shared, only the others are blended (in parallel). Skin colour comes from `upper_skin` (RGBA, the
-/// sets' size); out's skin reflection is the blend of a's and b's. a and b must have the same size
-/// (InputError otherwise); out must not be a or b.
+/// out = a (1 - t) + b t (t clamped to [0, 1]), tile by tile: tiles where a and b are both skin stay skin, tiles a and
+/// b share are shared, only the others are blended (in parallel). Skin colour comes from `upper_skin` (RGBA, the sets'
+/// size); out's skin reflection is the blend of a's and b's. a and b must have the same size (InputError otherwise);
+/// out must not be a or b.
 void lerp_tiled_map_sets(const TiledMapSet& a, const TiledMapSet& b, float t, const Image& upper_skin,
                          TiledMapSet& out);
 

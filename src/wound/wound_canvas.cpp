@@ -132,6 +132,7 @@ std::vector<CanvasTile> compute_tiles(const WoundCanvas& c) {
         const int x0 = static_cast<int>(t % static_cast<std::size_t>(tx)) * tiled_map_tile;
         const int y0 = static_cast<int>(t / static_cast<std::size_t>(tx)) * tiled_map_tile;
         const int x1 = std::min(x0 + tiled_map_tile, c.width()), y1 = std::min(y0 + tiled_map_tile, c.height());
+        TexelRect box{x1, y1, x0, y0};
         for (int y = y0; y < y1; ++y) {
           const float* shape = c.shape.pixel(0, y);
           const float* in = c.inside_mm.pixel(0, y);
@@ -140,11 +141,16 @@ std::vector<CanvasTile> compute_tiles(const WoundCanvas& c) {
             tile.max_inside_mm = std::max(tile.max_inside_mm, in[x]);
             if (shape[x] >= 0.5f) {
               ++tile.inside;
+              box.x0 = std::min(box.x0, x);
+              box.y0 = std::min(box.y0, y);
+              box.x1 = std::max(box.x1, x + 1);
+              box.y1 = std::max(box.y1, y + 1);
             } else if (out[x] < tile.min_outside_mm) {
               tile.min_outside_mm = out[x];
             }
           }
         }
+        if (tile.inside > 0) tile.inside_box = box;
       },
       1);
   return tiles;

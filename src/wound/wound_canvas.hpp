@@ -54,6 +54,7 @@ struct CanvasTile {
   std::size_t inside = 0;                                         ///< texels inside the wound
   float min_outside_mm = std::numeric_limits<float>::infinity();  ///< least outside_mm of its outside texels
   float max_inside_mm = 0.0f;                                     ///< largest inside_mm of its texels
+  TexelRect inside_box;  ///< bounding box of its inside texels (region coordinates; empty when none)
 };
 
 struct WoundCanvas {

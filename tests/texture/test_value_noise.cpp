@@ -199,7 +199,7 @@ TEST(ValueNoise, RejectsBadParameters) {
   for (float v : small.data()) EXPECT_TRUE(std::isfinite(v));
 }
 
-TEST(ValueNoise, FieldOnRectanglesEqualsTheWholeNoiseBitForBit) {
+TEST(ValueNoise, FieldOnRectanglesEqualsTheWholeNoise) {
   // Sizes that are not multiples of the periods (wrap-around taps) and periods larger than the noise.
   for (const auto& [w, h, octaves, first] :
        {std::tuple{70, 45, 5, 0}, std::tuple{33, 100, 7, 1}, std::tuple{64, 64, 10, 0}}) {
@@ -217,11 +217,13 @@ TEST(ValueNoise, FieldOnRectanglesEqualsTheWholeNoiseBitForBit) {
     for (int y0 = 0; y0 < h; y0 += 16)
       for (int x0 = 0; x0 < w; x0 += 16)
         field.evaluate(x0, y0, 16, 16, out.data() + static_cast<std::size_t>(y0 * w + x0), static_cast<std::size_t>(w));
-    ASSERT_EQ(out, whole.data()) << w << "x" << h;
-    // A single texel and a single row.
+    // In float (as a shader) against the double reference.
+    for (std::size_t i = 0; i < out.size(); ++i)
+      ASSERT_NEAR(out[i], whole.data()[i], 1e-5) << w << "x" << h << " " << i;
+    // A texel's value does not depend on the rectangle it is evaluated in.
     float one = -1.0f;
     field.evaluate(w / 2, h / 3, 1, 1, &one, 1);
-    EXPECT_EQ(one, whole.at(w / 2, h / 3));
+    EXPECT_EQ(one, out[static_cast<std::size_t>((h / 3) * w + w / 2)]);
   }
   EXPECT_THROW(ValueNoiseField(0, 4, ValueNoiseParams{}), InputError);
 }

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
 #include <set>
 
 #include "core/error.hpp"
@@ -119,4 +121,20 @@ TEST(TiledMapSet, TimelineSamplesStoreOnlyWhatTheirKeysChangeAtAnyThreadCount) {
   t.sample(86400.0, hold);  // scab-forming, held from 2 h to 2 d
   const TiledMapSet& held = t.entry_tiles(3);
   for (int i = 0; i < hold.tile_count(); ++i) EXPECT_EQ(hold.tile(i).color, held.tile(i).color) << i;
+}
+
+TEST(TiledMapSet, SixteenBitCodesRoundTripAndClamp) {
+  const float values[] = {-0.5f, 0.0f,      1e-6f,     0.25f,           0.5f, 0.7071f, 1.0f,
+                          3.0f,  0.999999f, 0.123456f, 0.5f / 65535.0f, 0.9f};
+  for (std::size_t i = 0; i + 4 <= std::size(values); ++i) {
+    std::uint16_t four[4];
+    to_unorm16x4(values + i, four);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const float v = values[i + k];
+      EXPECT_EQ(four[k], to_unorm16(v)) << v;
+      EXPECT_NEAR(from_unorm16(four[k]), std::clamp(v, 0.0f, 1.0f), 0.5f / 65535.0f + 1e-7f) << v;
+    }
+  }
+  EXPECT_EQ(to_unorm16(1.0f), 65535);
+  EXPECT_EQ(to_unorm16(-1.0f), 0);
 }
