@@ -3,6 +3,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
@@ -17,6 +18,7 @@
 #include "core/timer.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
+#include "image/jpeg_io.hpp"
 #include "image/png_io.hpp"
 #include "mesh_io/mesh_import.hpp"
 #include "mesh_io/mesh_writer.hpp"
@@ -31,8 +33,13 @@
 #include "report/html_report.hpp"
 #include "tetrahedralize/tet_quality.hpp"
 #include "tetrahedralize/tetrahedralize.hpp"
+#include "texture/normal_from_height.hpp"
+#include "texture/uv_bake.hpp"
+#include "texture/uv_seams.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
+#include "wound/abrasion.hpp"
+#include "wound/wound_canvas.hpp"
 
 namespace forensim::cli {
 namespace {
@@ -182,6 +189,124 @@ void forearm_uv_section(DemoContext& ctx, int resolution) {
 }
 
 // One row of the body-model table: counts, volume errors, quality and time.
+// Value of a region map at a UV, or -1 outside the region.
+float canvas_at_uv(const WoundCanvas& c, const Image& image, const Vec2& uv) {
+  const Vec2 px = uv_to_pixel(uv, c.full_width, c.full_height);
+  const int x = static_cast<int>(std::floor(px.x())) - c.region.x0;
+  const int y = static_cast<int>(std::floor(px.y())) - c.region.y0;
+  if (x < 0 || y < 0 || x >= c.width() || y >= c.height()) return -1.0f;
+  return image.at(x, y);
+}
+
+std::string side_text(const WoundCanvas& c, const Vec2& uv) {
+  if (canvas_at_uv(c, c.shape, uv) < 0.5f) return "outside the wound";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "inside, %.1f mm from its border", canvas_at_uv(c, c.inside_mm, uv));
+  return buf;
+}
+
+// A wound painted across a UV seam of the Lee Perry-Smith head scan with its colour map as the upper skin:
+// distances on the surface in 3D (continuous across the seam) beside the thesis's UV-space way (the wound
+// stops at the seam), as the slow test tests/wound/slow_seam_head.cpp checks.
+void wound_seam_section(DemoContext& ctx, const std::filesystem::path& folder) {
+  Stopwatch watch;
+  MeshImportOptions import_options;
+  import_options.scale = 30.0;  // arbitrary units; about 30 mm each gives a 26 cm head and neck
+  const TriMesh mesh = import_mesh(folder / "LeePerrySmith.glb", import_options);
+  const int size = 1024;
+  Image upper = read_image(folder / "Map-COL.jpg").resized(size, size).with_channels(4);
+  upper.set_encoding(PixelEncoding::linear);
+  Image lower = upper;  // dermis under the scanned skin: redder and darker (as forensim wound without one)
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const Vec4f u = upper.rgba(x, y);
+      lower.set_rgba(x, y, Vec4f(u.x() * 1.05f, u.y() * 0.7f, u.z() * 0.75f, 1.0f));
+    }
+  const UvRaster raster = rasterize_uv(mesh, size, size);
+  ctx.timed("wound on the head scan: mesh, colour map and UV raster", watch.lap());
+  // A seam edge whose texels on both sides show the edge itself (not an overlapping UV island).
+  const auto seams = uv_seam_edges(mesh);
+  auto shows = [&](const Vec2& uv, const Vec3& p) {
+    const Vec2 px = uv_to_pixel(uv, size, size);
+    const auto i = raster.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
+    return i >= 0 && (raster.texels[static_cast<std::size_t>(i)].position - p).norm() < 1.0;
+  };
+  const UvSeamEdge* chosen = nullptr;
+  for (std::size_t i = seams.size() / 2; i < seams.size() + seams.size() / 2 && !chosen; ++i) {
+    const UvSeamEdge& e = seams[i % seams.size()];
+    if (shows(e.uv_a, e.midpoint) && shows(e.uv_b, e.midpoint)) chosen = &e;
+  }
+  if (!chosen) throw Error("no UV seam of the head scan shows on both sides");
+  const UvSeamEdge& seam = *chosen;
+  WoundStroke dot;
+  dot.points = {seam.midpoint};
+  dot.radius_mm = 7.0;
+  CanvasOptions options;
+  options.reach_mm = AbrasionParams{}.reach_mm();
+  options.seed = 3;
+  const WoundCanvas surface = make_wound_canvas(mesh, raster, {dot}, upper, lower, options);
+  options.distance = DistanceMode::uv;
+  const WoundCanvas uv = make_wound_canvas(mesh, raster, {dot}, upper, lower, options);
+  ctx.timed("wound on the head scan: canvases (surface and UV)", watch.lap());
+
+  // Close-up camera along the outward normal at the seam.
+  const std::vector<Vec3> normals = vertex_normals(mesh);
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if ((mesh.positions[i] - seam.midpoint).squaredNorm() < (mesh.positions[nearest] - seam.midpoint).squaredNorm())
+      nearest = i;
+  Vec3 centroid = Vec3::Zero();
+  for (const auto& p : mesh.positions) centroid += p;
+  centroid /= static_cast<double>(mesh.positions.size());
+  Vec3 normal = normals[nearest].normalized();
+  if (normal.dot(seam.midpoint - centroid) < 0.0) normal = -normal;
+  const double view = 2.0 * (dot.radius_mm + 12.5) * 1.3;
+  const Camera camera = Camera::look_at(seam.midpoint + normal * (view / (2.0 * std::tan(15.0 * M_PI / 180.0))),
+                                        seam.midpoint, std::abs(normal.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitY());
+  std::vector<SheetCell> cells;
+  std::vector<SheetCell> maps;
+  for (const char* phase : {"vasodilation", "scab"}) {
+    for (const WoundCanvas* c : {&surface, &uv}) {
+      const bool on_surface = c == &surface;
+      TiledMapSet tiles;
+      make_abrasion_key(phase)->render_into(*c, 0.0, tiles);
+      MapSet full = skin_map_set(upper, AbrasionParams{}.skin_reflection);
+      tiles.write_into(c->upper_skin, full, c->region.x0, c->region.y0);
+      Scene scene;
+      SurfaceMaterial material = SurfaceMaterial::skin();
+      material.colour_source = ColourSource::texture;
+      material.base_colour = Vec3f(1, 1, 1);
+      material.base_texture = std::make_shared<Image>(full.color);
+      material.normal_map = std::make_shared<Image>(normal_from_height(full.height_mm, c->texels_per_mm));
+      scene.add(mesh, material, "head");
+      scene.camera = camera;
+      const std::string how = on_surface ? "distances on the surface" : "the thesis's UV space";
+      cells.push_back({Renderer(scene).render(camera, ctx.settings), std::string(phase) + ", " + how});
+      if (std::string(phase) == "vasodilation") {
+        maps.push_back({full.color.resized(ctx.settings.width, ctx.settings.height), "colour map, " + how});
+      }
+    }
+  }
+  ctx.timed("wound on the head scan: key positions and pictures", watch.lap());
+  char density[96];
+  std::snprintf(density, sizeof density, "%d^2 (Map-COL.jpg as the upper skin), %.1f texels/mm", size,
+                surface.texels_per_mm);
+  ctx.report.facts({{"texture", density},
+                    {"wound", "a 7 mm dot at the midpoint of a UV seam edge"},
+                    {"seam, side A (surface)", side_text(surface, seam.uv_a)},
+                    {"seam, side B (surface)", side_text(surface, seam.uv_b)},
+                    {"seam, side A (UV space)", side_text(uv, seam.uv_a)},
+                    {"seam, side B (UV space)", side_text(uv, seam.uv_b)},
+                    {"wound texels", format_count(surface.wound_texels) + " on the surface, " +
+                                         format_count(uv.wound_texels) + " in UV space"}});
+  ctx.picture(make_sheet(cells, 2, "wound across a UV seam of the head scan"), "wound_seam_head.png",
+              "The same wound painted across a UV seam: left with distances on the surface (continuous over the "
+              "seam), right the thesis's way in UV space (cut off at the seam, its glow too)");
+  ctx.picture(make_sheet(maps, 2, "the colour maps"), "wound_seam_head_maps.png",
+              "Vasodilation colour maps: on the surface the wound is painted into both UV islands the seam "
+              "separates; in UV space only into one");
+}
+
 void add_model_row(DemoContext& ctx, const std::string& name, const TetMesh& volume, std::size_t skin_triangles,
                    const TetrahedralizeReport& r, double seconds) {
   const TetQualityReport q = tet_quality(volume);
@@ -350,6 +475,23 @@ int run_demo(const DemoArgs& a) {
                    "palmar sides, flattened with ARAP or LSCM, packed at one texel density) and procedural skin "
                    "maps baked from solid noise at the 3D surface points, so they match across seams.");
     forearm_uv_section(ctx, a.uv_resolution);
+  });
+  const std::filesystem::path head_scan = data / "head-scan-lee-perry-smith";
+  add_stage(stages, "wound across a UV seam", [&] {
+    report.section("Wound healing: a wound across a UV seam of a scanned head",
+                   "An abrasion (Linnenbank 2015, chapter 4) painted on the Lee Perry-Smith head scan (CC BY 3.0) "
+                   "across a UV seam, with the scan's colour map as the upper skin. forensim measures distances "
+                   "on the surface in 3D from baked per-texel surface positions, so the wound continues across "
+                   "the seam; the thesis's way measures them in UV space, where the wound stops at the seam.");
+    if (!std::filesystem::exists(head_scan / "LeePerrySmith.glb") ||
+        !std::filesystem::exists(head_scan / "Map-COL.jpg")) {
+      report.warning(
+          "Skipped: the head scan (head-scan-lee-perry-smith/LeePerrySmith.glb and Map-COL.jpg) is "
+          "not in " +
+          data.string() + " (set FORENSIM_DATA_DIR or --data).");
+      return;
+    }
+    wound_seam_section(ctx, head_scan);
   });
   for (const std::string name : {"arm", "head"}) {
     add_stage(stages, "body model " + name, [&ctx, &report, &a, name] {
