@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,24 @@ std::shared_ptr<WoundCanvas> bench_canvas(int size) {
       make_flat_canvas(fill_polygon(size, size, rings), size / 256.0, upper, lower, 5));
 }
 
+// CPU seconds of all the process's threads so far (the machine may be shared: this is the work done, which
+// wall times on a loaded machine overstate).
+double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// time_repeated, with the mean CPU time per run (all threads) written into `cpu_text`.
+BenchTiming timed(int repetitions, const std::function<void()>& fn, std::string& cpu_text) {
+  const double c0 = process_cpu_s();
+  const BenchTiming t = time_repeated(repetitions, fn);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "cpu %.1f ms/run", 1e3 * (process_cpu_s() - c0) / std::max(repetitions, 1));
+  cpu_text = buf;
+  return t;
+}
+
 std::string kilo_texels(std::size_t n) {
   return std::to_string((n + 500) / 1000) + "k texels written";
 }
@@ -57,20 +78,27 @@ std::vector<BenchRow> run_wound(const BenchOptions& options) {
       keys.back()->render_into(*canvas, 0.5, outputs[static_cast<std::size_t>(p)]);  // warm-up
     }
     for (int p = 0; p < 5; ++p) {
-      const auto t = time_repeated(options.repetitions, [&] {
-        keys[static_cast<std::size_t>(p)]->render_into(*canvas, 0.5, outputs[static_cast<std::size_t>(p)]);
-      });
+      std::string cpu;
+      const auto t = timed(
+          options.repetitions,
+          [&] { keys[static_cast<std::size_t>(p)]->render_into(*canvas, 0.5, outputs[static_cast<std::size_t>(p)]); },
+          cpu);
       rows.push_back({std::string(phases[p]) + at, t.median_s, t.min_s, paper_size ? paper_ms[p] * 1e-3 : -1.0, ref,
-                      -1.0, kilo_texels(outputs[static_cast<std::size_t>(p)].stored_texels()) + ", " + threads});
+                      -1.0,
+                      kilo_texels(outputs[static_cast<std::size_t>(p)].stored_texels()) + ", " + threads + ", " + cpu});
     }
-    const auto all = time_repeated(options.repetitions, [&] {
-      for (int p = 0; p < 5; ++p)
-        keys[static_cast<std::size_t>(p)]->render_into(*canvas, 0.5, outputs[static_cast<std::size_t>(p)]);
-    });
+    std::string cpu;
+    const auto all = timed(
+        options.repetitions,
+        [&] {
+          for (int p = 0; p < 5; ++p)
+            keys[static_cast<std::size_t>(p)]->render_into(*canvas, 0.5, outputs[static_cast<std::size_t>(p)]);
+        },
+        cpu);
     std::size_t written = 0;
     for (const auto& o : outputs) written += o.stored_texels();
     rows.push_back({std::string("all phases") + at, all.median_s, all.min_s, paper_size ? 0.943 : -1.0, ref,
-                    paper_size ? 0.094 : -1.0, kilo_texels(written) + ", " + threads});
+                    paper_size ? 0.094 : -1.0, kilo_texels(written) + ", " + threads + ", " + cpu});
     // One timeline sample between vasoconstriction and vasodilation, copy-on-write into a tiled set, then
     // the same written out as full-texture float maps (the form saved to files).
     Timeline timeline(default_abrasion_timeline());
@@ -78,12 +106,16 @@ std::vector<BenchRow> run_wound(const BenchOptions& options) {
     TiledMapSet sample;
     double time_s = 400.0;
     timeline.sample(time_s, sample);
-    const auto s = time_repeated(std::max(options.repetitions, 20), [&] {
-      time_s = time_s < 800.0 ? time_s + 1.0 : 400.0;
-      timeline.sample(time_s, sample);
-    });
-    rows.push_back({std::string("timeline sample") + at, s.median_s, s.min_s, -1.0, "", paper_size ? 0.005 : -1.0,
-                    std::to_string((sample.stored_texels() + 500) / 1000) + "k texels blended, " + threads});
+    const auto s = timed(
+        std::max(options.repetitions, 20),
+        [&] {
+          time_s = time_s < 800.0 ? time_s + 1.0 : 400.0;
+          timeline.sample(time_s, sample);
+        },
+        cpu);
+    rows.push_back(
+        {std::string("timeline sample") + at, s.median_s, s.min_s, -1.0, "", paper_size ? 0.005 : -1.0,
+         std::to_string((sample.stored_texels() + 500) / 1000) + "k texels blended, " + threads + ", " + cpu});
     MapSet full = skin_map_set(canvas->upper_skin, 0.25f);
     const auto f = time_repeated(options.repetitions, [&] { timeline.sample_full(time_s, full); });
     rows.push_back({std::string("timeline sample as full float maps") + at, f.median_s, f.min_s, -1.0, "", -1.0,
