@@ -2,9 +2,15 @@
 // 943 ms for all phases at its texture size on a GTX 780) and to sample the timeline (interpolate a map set).
 // Two cases:
 //  - full: a synthetic canvas whose region is the whole texture (a wound patch of 256 x 256 mm at 8 texels/mm
-//    for 2048^2, the thesis's density), so every texel is computed as the thesis's full-screen shaders do;
+//    for 2048^2, the thesis's density) holding a concave wound of two ellipses about 60 x 35 mm; the maps
+//    are tiled (wound/tiled_map_set.hpp), so each key position computes the tiles of 64^2 texels its maps
+//    change (the wound and its 12.5 mm glow) and shares the skin elsewhere, as the thesis's full-screen
+//    shaders would if they skipped texels that equal the skin;
 //  - patch: a 30 mm stroke on the built-in 188 x 160 mm cylinder, where only the wound's region (the wound
 //    and its 12.5 mm glow) is computed and blended.
+// A timeline sample is copy-on-write: it blends the tiles where its two key positions differ and shares the
+// rest. BM_TimelineSampleFull also expands the sample into a plain full-texture map set (float maps, the
+// form written to files), which costs the texture's size.
 // Arguments: texture size, worker threads (the goal is for 2 cores: all phases < 94 ms at 2048^2,
 // one timeline sample < 5 ms at 2048^2).
 #include <benchmark/benchmark.h>
@@ -14,10 +20,10 @@
 #include <memory>
 
 #include "core/parallel.hpp"
-#include "texture/gradient_edge.hpp"
 #include "texture/polygon_fill.hpp"
 #include "texture/uv_bake.hpp"
 #include "wound/abrasion.hpp"
+#include "wound/flat_canvas.hpp"
 #include "wound/timeline.hpp"
 #include "wound/uv_cylinder.hpp"
 
@@ -31,36 +37,15 @@ std::shared_ptr<WoundCanvas> full_canvas(int size) {
   static std::map<int, std::shared_ptr<WoundCanvas>> cache;
   auto& c = cache[size];
   if (c) return c;
-  c = std::make_shared<WoundCanvas>();
-  c->full_width = c->full_height = size;
-  c->region = TexelRect{0, 0, size, size};
-  c->texels_per_mm = size / 256.0;
-  c->seed = 5;
-  default_skin_maps(size, size, 5, c->upper_skin, c->lower_skin);
+  Image upper, lower;
+  default_skin_maps(size, size, 5, upper, lower);
   std::vector<std::vector<Vec2>> rings(2);
   for (int k = 0; k < 64; ++k) {
     const double a = 2.0 * M_PI * k / 64.0;
     rings[0].push_back(Vec2(size * (0.42 + 0.12 * std::cos(a)), size * (0.5 + 0.07 * std::sin(a))));
     rings[1].push_back(Vec2(size * (0.58 + 0.06 * std::cos(a)), size * (0.45 + 0.1 * std::sin(a))));
   }
-  c->shape = fill_polygon(size, size, rings);
-  const Image out_d = edge_distance(c->shape, GradientSide::outside);
-  const Image in_d = edge_distance(c->shape, GradientSide::inside);
-  c->outside_mm = Image(size, size, 1, 0.0f, PixelEncoding::data);
-  c->inside_mm = Image(size, size, 1, 0.0f, PixelEncoding::data);
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      const bool in = c->shape.at(x, y) >= 0.5f;
-      c->wound_texels += in;
-      if (in) {
-        c->inside_mm.at(x, y) = static_cast<float>((in_d.at(x, y) - 0.5) / c->texels_per_mm);
-      } else {
-        c->outside_mm.at(x, y) = static_cast<float>((out_d.at(x, y) - 0.5) / c->texels_per_mm);
-      }
-    }
-  c->closing_distance_mm = 0.36 * size / c->texels_per_mm;
-  c->wound_box = shape_bounds(c->shape);
-  c->distance = DistanceMode::uv;
+  c = std::make_shared<WoundCanvas>(make_flat_canvas(fill_polygon(size, size, rings), size / 256.0, upper, lower, 5));
   return c;
 }
 
@@ -100,22 +85,47 @@ void BM_AbrasionPhase(benchmark::State& state) {
   for (int p = 0; p < 5; ++p)
     if (phase == 5 || phase == p) keys.push_back(make_abrasion_key(kPhases[p]));
   // Output maps allocated once, as render targets are on a GPU.
-  std::vector<MapSet> outputs(keys.size());
+  std::vector<TiledMapSet> outputs(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i]->render_into(*canvas, 0.5, outputs[i]);
   for (auto _ : state) {
     for (std::size_t i = 0; i < keys.size(); ++i) {
       keys[i]->render_into(*canvas, 0.5, outputs[i]);
-      benchmark::DoNotOptimize(outputs[i].color.data().data());
+      benchmark::DoNotOptimize(outputs[i].tile(0).color.get());
     }
   }
   set_thread_count(previous);
+  std::size_t stored = 0;
+  for (const auto& o : outputs) stored += o.stored_texels();
   state.SetLabel(std::string(state.range(2) == 0 ? "full " : "patch ") + (phase == 5 ? "all phases" : kPhases[phase]) +
-                 ", region " + std::to_string(canvas->width()) + "x" + std::to_string(canvas->height()));
+                 ", region " + std::to_string(canvas->width()) + "x" + std::to_string(canvas->height()) + ", " +
+                 std::to_string(stored / 1000) + "k map texels written");
 }
 
-// One timeline sample between vasoconstriction and vasodilation (a blend of two map sets) written into a
-// full-texture map set. Arguments: size, threads, case.
+// One timeline sample between vasoconstriction and vasodilation (a blend of two map sets), copy-on-write into
+// a tiled set. Arguments: size, threads, case.
 void BM_TimelineSample(benchmark::State& state) {
+  const auto canvas = canvas_for(state);
+  Timeline timeline(default_abrasion_timeline());
+  timeline.render(canvas);
+  TiledMapSet out;
+  const int previous = thread_count();
+  set_thread_count(static_cast<int>(state.range(1)));
+  double t = 400.0;
+  timeline.sample(t, out);
+  for (auto _ : state) {
+    timeline.sample(t, out);
+    t = t < 800.0 ? t + 1.0 : 400.0;
+    benchmark::DoNotOptimize(out.tile(0).color.get());
+  }
+  set_thread_count(previous);
+  state.SetLabel(std::string(state.range(2) == 0 ? "full" : "patch") + ", region " + std::to_string(canvas->width()) +
+                 "x" + std::to_string(canvas->height()) + ", " + std::to_string(out.stored_texels() / 1000) +
+                 "k map texels blended");
+}
+
+// The same sample written into a full-texture plain map set (float RGBA, reflection, height), as files are
+// written. Arguments: size, threads, case.
+void BM_TimelineSampleFull(benchmark::State& state) {
   const auto canvas = canvas_for(state);
   Timeline timeline(default_abrasion_timeline());
   timeline.render(canvas);
@@ -150,5 +160,6 @@ BENCHMARK(BM_TimelineSample)
     ->Args({2048, 2, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_TimelineSampleFull)->Args({2048, 2, 0})->Args({4096, 2, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -206,10 +206,10 @@ int run_wound(const WoundArgs& a) {
   std::vector<Shot> keys, shots;
   const auto& entries = timeline.entries();
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    if (i > 0 && &timeline.entry_maps(i) == &timeline.entry_maps(i - 1)) continue;
+    if (i > 0 && timeline.same_maps(i, i - 1)) continue;
     Shot s{entries[i].label + " (" + format_injury_time(entries[i].time_s) + ")",
            "key" + std::to_string(i) + "_" + sanitize(entries[i].key->name()), skin};
-    paste_map_set(s.maps, timeline.entry_maps(i), canvas->region);
+    timeline.write_entry_full(i, s.maps);
     keys.push_back(std::move(s));
   }
   for (double t : times) {

@@ -63,8 +63,74 @@ Image erode_shape(const Image& shape, const std::vector<int>& widths, ErosionAxi
   return out;
 }
 
+namespace {
+
+bool is_binary(const Image& shape) {
+  if (shape.channels() != 1) return false;
+  for (float v : shape.data())
+    if (v != 0.0f && v != 1.0f) return false;
+  return true;
+}
+
+Image erode_binary(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis) {
+  const int w = shape.width(), h = shape.height();
+  Image out(w, h, 1, 0.0f, PixelEncoding::data);
+  const bool along_x = axis == ErosionAxis::x;
+  const int lines = along_x ? h : w, length = along_x ? w : h;
+  const std::size_t step = along_x ? 1 : static_cast<std::size_t>(w);
+  const float* in = shape.data().data();
+  float* o = out.data().data();
+  parallel_for(
+      0, static_cast<std::size_t>(lines),
+      [&](std::size_t line) {
+        const std::size_t first = along_x ? line * static_cast<std::size_t>(w) : line;
+        erode_binary_line(in + first, step, length, m_min, m_max, seed, first, step, o + first, step);
+      },
+      4);
+  return out;
+}
+
+}  // namespace
+
+void erode_binary_line(const float* in, std::size_t in_step, int n, int m_min, int m_max, std::uint64_t seed,
+                       std::uint64_t index0, std::uint64_t index_step, float* out, std::size_t out_step) {
+  // The minimum over a window of a 0/1 line is 0 exactly when a 0 lies in it, so a texel is 0 when its
+  // nearest 0 is within half its kernel width; widths are drawn only for texels whose nearest 0 is within
+  // the largest half-width.
+  if (n <= 0) return;
+  const int span = m_max - m_min + 1;
+  const int max_edge = erosion_kernel_width(m_max) / 2;
+  thread_local std::vector<int> right;
+  right.resize(static_cast<std::size_t>(n));
+  constexpr int far = std::numeric_limits<int>::max() / 2;
+  int next = far;  // distance to the nearest 0 at or after i
+  for (int i = n - 1; i >= 0; --i) {
+    next = in[static_cast<std::size_t>(i) * in_step] == 0.0f ? 0 : std::min(next + 1, far);
+    right[static_cast<std::size_t>(i)] = next;
+  }
+  int previous = far;  // distance to the nearest 0 at or before i
+  for (int i = 0; i < n; ++i) {
+    previous = in[static_cast<std::size_t>(i) * in_step] == 0.0f ? 0 : std::min(previous + 1, far);
+    const int nearest = std::min(previous, right[static_cast<std::size_t>(i)]);
+    float value = 1.0f;
+    if (nearest == 0) {
+      value = 0.0f;
+    } else if (nearest <= max_edge) {
+      const std::uint64_t index = index0 + static_cast<std::uint64_t>(i) * index_step;
+      const int m = m_min + std::min(span - 1, static_cast<int>(hash_uniform(seed, index) * span));
+      if (nearest <= erosion_kernel_width(m) / 2) value = 0.0f;
+    }
+    out[static_cast<std::size_t>(i) * out_step] = value;
+  }
+}
+
 Image erode_shape(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis) {
-  return erode_shape(shape, random_erosion_widths(shape.width(), shape.height(), m_min, m_max, seed), axis);
+  if (!is_binary(shape)) {
+    return erode_shape(shape, random_erosion_widths(shape.width(), shape.height(), m_min, m_max, seed), axis);
+  }
+  require_input(m_min >= 1 && m_min <= m_max && m_max <= 4096, "random_erosion_widths", "range",
+                "needs 1 <= m_min <= m_max <= 4096, got " + std::to_string(m_min) + ".." + std::to_string(m_max));
+  return erode_binary(shape, m_min, m_max, seed, axis);
 }
 
 }  // namespace forensim

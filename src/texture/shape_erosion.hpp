@@ -27,7 +27,16 @@ enum class ErosionAxis { x, y };
 /// single-channel data image. widths must hold width * height odd positive values (InputError otherwise).
 Image erode_shape(const Image& shape, const std::vector<int>& widths, ErosionAxis axis = ErosionAxis::x);
 
-/// erode_shape with random_erosion_widths(shape size, m_min, m_max, seed).
+/// erode_shape with random_erosion_widths(shape size, m_min, m_max, seed). On a 0/1 shape (a wound mask) the
+/// same result in time linear in the texels, widths drawn only near the shape's edges.
 Image erode_shape(const Image& shape, int m_min, int m_max, std::uint64_t seed, ErosionAxis axis = ErosionAxis::x);
+
+/// Algorithm 3.1 on one line of a 0/1 mask (values exactly 0 or 1) in time linear in its length:
+/// out[i * out_step] = min of in[j * in_step] over the texels j of [0, n) within half of texel i's kernel
+/// width, the width drawn as random_erosion_widths draws it for pixel index index0 + i * index_step
+/// (texels beyond [0, n) are ignored, as beyond an image's border). erode_shape of a 0/1 image equals this
+/// line by line; a caller that needs a few rows of an erosion (a tile) computes just those.
+void erode_binary_line(const float* in, std::size_t in_step, int n, int m_min, int m_max, std::uint64_t seed,
+                       std::uint64_t index0, std::uint64_t index_step, float* out, std::size_t out_step);
 
 }  // namespace forensim

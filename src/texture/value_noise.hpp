@@ -54,4 +54,28 @@ Image value_noise(const Image& base, const ValueNoiseParams& params);
 /// Algorithm 3.2 from start to end: value_noise(value_noise_base(width, height, params.seed), params).
 Image value_noise(int width, int height, const ValueNoiseParams& params);
 
+/// Algorithm 3.2 for a width x height noise evaluated on any rectangle of it, without building the base
+/// array: a lattice value is hashed where it is read (the same hash_uniform(seed, y * width + x) as
+/// value_noise_base). Same steps as value_noise in 32-bit float, as the thesis's shaders compute them
+/// (value_noise works in double; the two agree within 1e-5). For maps that read noise only in some tiles (a
+/// wound's noise layers are read inside the wound only): the cost is that of the texels evaluated, not of
+/// the texture. Set up once (parameter checks, amplitudes), then evaluate() from any number of threads; a
+/// texel's value does not depend on the rectangle it is evaluated in.
+class ValueNoiseField {
+ public:
+  /// Throws InputError for bad parameters (as value_noise) or a non-positive size.
+  ValueNoiseField(int width, int height, const ValueNoiseParams& params);
+  int width() const { return m_width; }
+  int height() const { return m_height; }
+  /// Noise at texels [x0, x0 + w) x [y0, y0 + h) (clipped to the field) into out[(y - y0) * stride + x - x0].
+  /// Serial; thread-safe (scratch memory is per thread).
+  void evaluate(int x0, int y0, int w, int h, float* out, std::size_t stride) const;
+
+ private:
+  int m_width = 0, m_height = 0;
+  ValueNoiseParams m_params;
+  std::vector<double> m_amplitude;  // per loop step, largest period first
+  double m_total_amplitude = 0.0;
+};
+
 }  // namespace forensim

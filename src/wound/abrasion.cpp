@@ -1,7 +1,9 @@
 #include "wound/abrasion.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -18,9 +20,9 @@ using namespace abrasion_colors;
 
 // One noise layer with the thesis's octaves, persistence, bias and gain over the wound's box (noise is only
 // read inside the wound), its periods raised to keep the look in mm at the canvas's density; `salt` makes
-// the layers independent.
-Image thesis_noise(const WoundCanvas& c, const AbrasionParams& p, int octaves, double persistence, double bias,
-                   double gain, std::uint64_t salt) {
+// the layers independent. Evaluated per tile where the wound is.
+ValueNoiseField thesis_noise(const WoundCanvas& c, const AbrasionParams& p, int octaves, double persistence,
+                             double bias, double gain, std::uint64_t salt) {
   ValueNoiseParams n;
   n.octaves = octaves;
   n.persistence = persistence;
@@ -28,31 +30,43 @@ Image thesis_noise(const WoundCanvas& c, const AbrasionParams& p, int octaves, d
   n.gain = gain;
   n.first_octave = std::max(0, static_cast<int>(std::lround(std::log2(c.texels_per_mm / p.thesis_texels_per_mm))));
   n.seed = mix64(c.seed ^ mix64(salt));
-  return value_noise(std::max(c.wound_box.width(), 1), std::max(c.wound_box.height(), 1), n);
+  return ValueNoiseField(std::max(c.wound_box.width(), 1), std::max(c.wound_box.height(), 1), n);
 }
 
-// Row pointers of the canvas and the output maps (all RGBA inputs have 4 channels, see make_wound_canvas).
+// Noise of a layer over the inside texels' box `ib` of the tile whose rect is `r` (texel (x, y) at
+// (y - r.y0) * tile + x - r.x0; other texels are left unset). `slot` picks one of a thread's buffers.
+const float* noise_tile(const ValueNoiseField& f, const WoundCanvas& c, const TexelRect& r, const TexelRect& ib,
+                        int slot) {
+  thread_local std::array<std::vector<float>, 4> buffers;
+  auto& b = buffers[static_cast<std::size_t>(slot)];
+  b.resize(tiled_map_tile_texels);
+  f.evaluate(
+      ib.x0 - c.wound_box.x0, ib.y0 - c.wound_box.y0, ib.width(), ib.height(),
+      b.data() + static_cast<std::size_t>(ib.y0 - r.y0) * tiled_map_tile + static_cast<std::size_t>(ib.x0 - r.x0),
+      tiled_map_tile);
+  return b.data();
+}
+
+// Row pointers of the canvas (all RGBA inputs have 4 channels, see make_wound_canvas).
 struct Row {
   const float* upper;
   const float* lower;
   const float* shape;
   const float* outside;
   const float* inside;
-  float* color;
-  float* reflection;
-  float* height;
 };
 
-Row row(const WoundCanvas& c, MapSet& m, int y) {
-  return {c.upper_skin.pixel(0, y), c.lower_skin.pixel(0, y), c.shape.pixel(0, y),      c.outside_mm.pixel(0, y),
-          c.inside_mm.pixel(0, y),  m.color.pixel(0, y),      m.reflection.pixel(0, y), m.height_mm.pixel(0, y)};
+Row row(const WoundCanvas& c, int y) {
+  return {c.upper_skin.pixel(0, y), c.lower_skin.pixel(0, y), c.shape.pixel(0, y), c.outside_mm.pixel(0, y),
+          c.inside_mm.pixel(0, y)};
 }
 
-inline void store(float* out, const Vec4f& v) {
-  out[0] = v[0];
-  out[1] = v[1];
-  out[2] = v[2];
-  out[3] = v[3];
+inline void put(std::uint16_t* out, std::size_t i, const Vec4f& v) {
+  to_unorm16x4(v.data(), out + 4 * i);
+}
+
+inline void put(std::uint16_t* out, std::size_t i, const float* v) {
+  to_unorm16x4(v, out + 4 * i);
 }
 
 inline Vec4f load(const float* p) {
@@ -68,14 +82,14 @@ Vec4f mul4(const Vec4f& a, const Vec4f& b) {
 }
 
 // The red glow outside the wound (chapter 4.3.2): Lerp(WOUND_RED, upper skin, d / thickness), upper skin beyond.
-inline void glow(const Row& r, int x, float thickness_mm) {
+inline void glow(std::uint16_t* color, std::size_t i, const Row& r, int x, float thickness_mm) {
   const float* up = r.upper + 4 * x;
   const float d = r.outside[x];
   if (!(d <= thickness_mm)) {
-    std::copy_n(up, 4, r.color + 4 * x);
+    put(color, i, up);
     return;
   }
-  store(r.color + 4 * x, lerp4(wound_red, load(up), d / thickness_mm));
+  put(color, i, lerp4(wound_red, load(up), d / thickness_mm));
 }
 
 bool inside(const WoundCanvas& c, int x, int y) {
@@ -90,10 +104,48 @@ void check_canvas(const WoundCanvas& c) {
   }
 }
 
-template <typename F>
-void for_rows(int height, F&& f) {
+// A tile to render and the storage of the maps it writes (null: that map stays the skin there). A job writes
+// every texel of its rect in each map it has.
+struct TileJob {
+  int tile = 0;
+  TexelRect rect;
+  const CanvasTile* info = nullptr;
+  std::uint16_t* color = nullptr;
+  std::uint16_t* reflection = nullptr;
+  float* height = nullptr;
+  // Index of region texel (x, y) in the tile's storage.
+  std::size_t at(int x, int y) const {
+    return static_cast<std::size_t>(y - rect.y0) * tiled_map_tile + static_cast<std::size_t>(x - rect.x0);
+  }
+};
+
+struct Wants {
+  bool color = false, reflection = false, height = false;
+};
+
+// Resets `m` to the skin, takes storage for the maps `want(tile info)` asks for (serially), then runs
+// body(job) over those tiles in parallel (one tile per task: the same maps at any thread count).
+template <typename Want, typename Body>
+void render_tiles(const WoundCanvas& c, TiledMapSet& m, float skin_reflection, Want&& want, Body&& body) {
+  m.reset(c.width(), c.height(), skin_reflection);
+  std::vector<CanvasTile> scratch;
+  const auto& tiles = canvas_tiles(c, scratch);
+  std::vector<TileJob> jobs;
+  for (int t = 0; t < m.tile_count(); ++t) {
+    const CanvasTile& info = tiles[static_cast<std::size_t>(t)];
+    const Wants w = want(info);
+    if (!w.color && !w.reflection && !w.height) continue;
+    TileJob job;
+    job.tile = t;
+    job.rect = m.tile_rect(t);
+    job.info = &info;
+    if (w.color) job.color = m.own_color(t);
+    if (w.reflection) job.reflection = m.own_reflection(t);
+    if (w.height) job.height = m.own_height(t);
+    jobs.push_back(job);
+  }
   parallel_for(
-      0, static_cast<std::size_t>(height), [&](std::size_t y) { f(static_cast<int>(y)); }, 4);
+      0, jobs.size(), [&](std::size_t i) { body(jobs[i]); }, 1);
 }
 
 // Erosion range of m in thesis texels, at the canvas's density.
@@ -107,9 +159,16 @@ std::pair<int, int> erosion_range(const WoundCanvas& c, const AbrasionParams& p,
 // Eq. 4.8's maxOuterGradBorder. Never below the deepest inside distance, so the wound closes at position 1
 // whatever the discrete border gives for the diameter.
 double max_outer_border_mm(const WoundCanvas& c, const AbrasionParams& p) {
-  double deepest = 0.0;
-  for (float v : c.inside_mm.data()) deepest = std::max(deepest, static_cast<double>(v));
-  return p.thesis_closing_distance ? std::max(c.closing_distance_mm * 0.5, deepest) : deepest;
+  std::vector<CanvasTile> scratch;
+  float deepest = 0.0f;
+  for (const auto& t : canvas_tiles(c, scratch)) deepest = std::max(deepest, t.max_inside_mm);
+  return p.thesis_closing_distance ? std::max(c.closing_distance_mm * 0.5, static_cast<double>(deepest))
+                                   : static_cast<double>(deepest);
+}
+
+int wrap(int i, int n) {
+  const int m = i % n;
+  return m < 0 ? m + n : m;
 }
 
 }  // namespace
@@ -118,107 +177,203 @@ double AbrasionParams::reach_mm() const {
   return px_to_mm(std::max(glow_thickness_px, scab_gradient_px)) + 0.5;
 }
 
-void VasoconstrictionKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
+void VasoconstrictionKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
   check_canvas(c);
-  prepare_map_set(m, c.width(), c.height(), m_params.skin_reflection);
-  for_rows(c.height(), [&](int y) {
-    const Row r = row(c, m, y);
-    for (int x = 0; x < c.width(); ++x)
-      std::copy_n((r.shape[x] >= 0.5f ? r.lower : r.upper) + 4 * x, 4, r.color + 4 * x);
-  });
+  render_tiles(
+      c, m, m_params.skin_reflection,
+      [](const CanvasTile& t) {
+        return Wants{t.inside > 0, false, false};
+      },
+      [&](const TileJob& job) {
+        for (int y = job.rect.y0; y < job.rect.y1; ++y) {
+          const Row r = row(c, y);
+          for (int x = job.rect.x0; x < job.rect.x1; ++x)
+            put(job.color, job.at(x, y), (r.shape[x] >= 0.5f ? r.lower : r.upper) + 4 * x);
+        }
+      });
 }
 
-void VasodilationKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
+void VasodilationKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const auto [a0, a1] = erosion_range(c, p, 3, 5);
   const auto [b0, b1] = erosion_range(c, p, 3, 10);
-  // Erode the shape over its box plus a margin wider than the kernels, so the outside stays in view.
+  // Algorithm 3.1 twice along rows over the shape's box plus a margin wider than the kernels (so the outside
+  // stays in view), widths drawn per texel of that crop; computed per tile row, over the tile's columns
+  // widened by both kernels' half-widths, which gives the crop's values there exactly.
   const TexelRect& box = c.wound_box;
   const int margin = b1 + 2;
   const int ex0 = std::max(box.x0 - margin, 0), ex1 = std::min(box.x1 + margin, c.width());
-  const Image shape_crop = c.shape.crop(ex0, box.y0, ex1 - ex0, box.height());
-  const Image eroded = erode_shape(erode_shape(shape_crop, a0, a1, mix64(c.seed ^ 0xE1)), b0, b1, mix64(c.seed ^ 0xE2));
-  const Image scrape = thesis_noise(c, p, 5, 0.09, 0.5, 0.43, 0x5C);
+  const std::uint64_t crop_width = static_cast<std::uint64_t>(ex1 - ex0);
+  const std::uint64_t seed1 = mix64(c.seed ^ 0xE1), seed2 = mix64(c.seed ^ 0xE2);
+  const int reach = erosion_kernel_width(a1) / 2 + erosion_kernel_width(b1) / 2;
+  // Eroded mask of row y over [x0, x1) into out[x - x0] (only the columns of the crop, where the wound is).
+  auto eroded_row = [&](int y, int x0, int x1, float* out) {
+    thread_local std::vector<float> in, once, twice;
+    const int cx0 = std::max(x0, ex0), cx1 = std::min(x1, ex1);
+    if (cx1 <= cx0) return;
+    const int s0 = std::max(ex0, cx0 - reach), s1 = std::min(ex1, cx1 + reach);
+    const std::size_t n = static_cast<std::size_t>(s1 - s0);
+    in.resize(n);
+    once.resize(n);
+    twice.resize(n);
+    const float* shape = c.shape.pixel(0, y);
+    for (std::size_t i = 0; i < n; ++i) in[i] = shape[static_cast<std::size_t>(s0) + i] >= 0.5f ? 1.0f : 0.0f;
+    const std::uint64_t index0 =
+        static_cast<std::uint64_t>(y - box.y0) * crop_width + static_cast<std::uint64_t>(s0 - ex0);
+    erode_binary_line(in.data(), 1, static_cast<int>(n), a0, a1, seed1, index0, 1, once.data(), 1);
+    erode_binary_line(once.data(), 1, static_cast<int>(n), b0, b1, seed2, index0, 1, twice.data(), 1);
+    std::copy_n(twice.data() + (cx0 - s0), cx1 - cx0, out + (cx0 - x0));
+  };
+  // Scrape marks: the noise stretched 6400% along y (chapter 4.3.2, Figure 4.6), sampled bilinearly with
+  // wrap-around at (x + 0.5, (y + 0.5) / 64): only the noise rows those samples read are evaluated.
+  const ValueNoiseField scrape = thesis_noise(c, p, 5, 0.09, 0.5, 0.43, 0x5C);
+  const int bw = scrape.width(), bh = scrape.height();
+  struct RowTaps {
+    int a, b;
+    float t;
+  };
+  std::vector<RowTaps> taps(static_cast<std::size_t>(bh));
+  std::vector<int> rows;
+  for (int y = 0; y < bh; ++y) {
+    const double fy = (y + 0.5) / 64.0 - 0.5;
+    const double y0f = std::floor(fy);
+    const int y0 = static_cast<int>(y0f);
+    taps[static_cast<std::size_t>(y)] = {wrap(y0, bh), wrap(y0 + 1, bh), static_cast<float>(fy - y0f)};
+    rows.push_back(wrap(y0, bh));
+    rows.push_back(wrap(y0 + 1, bh));
+  }
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  std::vector<float> scrape_rows(rows.size() * static_cast<std::size_t>(bw));
+  parallel_for(
+      0, rows.size(),
+      [&](std::size_t i) {
+        scrape.evaluate(0, rows[i], bw, 1, scrape_rows.data() + i * static_cast<std::size_t>(bw), 0);
+      },
+      1);
+  // Taps as offsets of their rows in scrape_rows.
+  auto offset_of = [&](int r) {
+    return static_cast<int>(std::lower_bound(rows.begin(), rows.end(), r) - rows.begin()) * bw;
+  };
+  for (auto& t : taps) {
+    t.a = offset_of(t.a);
+    t.b = offset_of(t.b);
+  }
   const float glow_mm = static_cast<float>(p.px_to_mm(p.glow_thickness_px));
-  for_rows(c.height(), [&](int y) {
-    const Row r = row(c, m, y);
-    for (int x = 0; x < c.width(); ++x) {
-      if (r.shape[x] < 0.5f) {
-        glow(r, x, glow_mm);
-      } else if (eroded.at(x - ex0, y - box.y0) >= 0.5f) {
-        store(r.color + 4 * x, mul4(load(r.lower + 4 * x), wound_red));
-        // Scrape marks: the noise stretched 6400% along y (chapter 4.3.2, Figure 4.6).
-        r.reflection[x] = sample_bilinear(scrape, x - box.x0 + 0.5, (y - box.y0 + 0.5) / 64.0, 0, WrapMode::wrap);
-      } else {
-        store(r.color + 4 * x, mul4(load(r.upper + 4 * x), edge_grey));
-      }
-    }
-  });
+  const std::uint16_t skin_reflection = to_unorm16(p.skin_reflection);
+  render_tiles(
+      c, m, p.skin_reflection,
+      [&](const CanvasTile& t) {
+        return Wants{t.inside > 0 || t.min_outside_mm <= glow_mm, t.inside > 0, false};
+      },
+      [&](const TileJob& job) {
+        float eroded[tiled_map_tile];
+        const TexelRect& ib = job.info->inside_box;
+        for (int y = job.rect.y0; y < job.rect.y1; ++y) {
+          const Row r = row(c, y);
+          if (y >= ib.y0 && y < ib.y1) eroded_row(y, job.rect.x0, job.rect.x1, eroded);
+          for (int x = job.rect.x0; x < job.rect.x1; ++x) {
+            const std::size_t i = job.at(x, y);
+            if (job.reflection) job.reflection[i] = skin_reflection;
+            if (r.shape[x] < 0.5f) {
+              glow(job.color, i, r, x, glow_mm);
+            } else if (eroded[x - job.rect.x0] >= 0.5f) {
+              put(job.color, i, mul4(load(r.lower + 4 * x), wound_red));
+              const RowTaps& t = taps[static_cast<std::size_t>(y - box.y0)];
+              const float top = scrape_rows[static_cast<std::size_t>(t.a + x - box.x0)];
+              const float bottom = scrape_rows[static_cast<std::size_t>(t.b + x - box.x0)];
+              job.reflection[i] = to_unorm16(top * (1 - t.t) + bottom * t.t);
+            } else {
+              put(job.color, i, mul4(load(r.upper + 4 * x), edge_grey));
+            }
+          }
+        }
+      });
 }
 
-void ScabFormingKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
+void ScabFormingKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
-  const Image bottom = thesis_noise(c, p, 5, 0.85, 0.54, 0.21, 0xB0);
-  const Image speckle = thesis_noise(c, p, 5, 0.48, 0.16, 0.15, 0x5E);
+  const ValueNoiseField bottom = thesis_noise(c, p, 5, 0.85, 0.54, 0.21, 0xB0);
+  const ValueNoiseField speckle = thesis_noise(c, p, 5, 0.48, 0.16, 0.15, 0x5E);
   const float glow_mm = static_cast<float>(p.px_to_mm(p.glow_thickness_px));
-  const TexelRect& box = c.wound_box;
-  for_rows(c.height(), [&](int y) {
-    const Row r = row(c, m, y);
-    for (int x = 0; x < c.width(); ++x) {
-      if (r.shape[x] < 0.5f) {
-        glow(r, x, glow_mm);
-        continue;
-      }
-      const float nb = bottom.at(x - box.x0, y - box.y0);
-      // Eq. 4.5: lowerWoundColor = lowerSkin * noise.r + upperSkin * (1 - noise.r).
-      const Vec4f lower_wound = load(r.lower + 4 * x) * nb + load(r.upper + 4 * x) * (1.0f - nb);
-      // Eq. 4.6 with speckleWoundColor = speckle noise x (0.88, 0.20, 0.22).
-      const Vec4f sp = speckle_red * speckle.at(x - box.x0, y - box.y0);
-      Vec4f out = sp * sp.x() + lower_wound * (1.0f - sp.x());
-      out.w() = 1.0f;
-      store(r.color + 4 * x, out);
-    }
-  });
+  render_tiles(
+      c, m, p.skin_reflection,
+      [&](const CanvasTile& t) {
+        return Wants{t.inside > 0 || t.min_outside_mm <= glow_mm, false, false};
+      },
+      [&](const TileJob& job) {
+        const bool wound = job.info->inside > 0;
+        const float* nb = wound ? noise_tile(bottom, c, job.rect, job.info->inside_box, 0) : nullptr;
+        const float* ns = wound ? noise_tile(speckle, c, job.rect, job.info->inside_box, 1) : nullptr;
+        for (int y = job.rect.y0; y < job.rect.y1; ++y) {
+          const Row r = row(c, y);
+          for (int x = job.rect.x0; x < job.rect.x1; ++x) {
+            const std::size_t i = job.at(x, y);
+            if (r.shape[x] < 0.5f) {
+              glow(job.color, i, r, x, glow_mm);
+              continue;
+            }
+            // Eq. 4.5: lowerWoundColor = lowerSkin * noise.r + upperSkin * (1 - noise.r).
+            const Vec4f lower_wound = load(r.lower + 4 * x) * nb[i] + load(r.upper + 4 * x) * (1.0f - nb[i]);
+            // Eq. 4.6 with speckleWoundColor = speckle noise x (0.88, 0.20, 0.22).
+            const Vec4f sp = speckle_red * ns[i];
+            Vec4f out = sp * sp.x() + lower_wound * (1.0f - sp.x());
+            out.w() = 1.0f;
+            put(job.color, i, out);
+          }
+        }
+      });
 }
 
-void ScabKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
+void ScabKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
-  const Image mask = thesis_noise(c, p, 7, 1.0, 0.44, 0.02, 0x4A);
-  const Image body = thesis_noise(c, p, 5, 0.54, 0.3, 0.69, 0x4B);
-  const Image rim_noise = thesis_noise(c, p, 5, 0.33, 0.60, 0.59, 0x4C);
-  const Image shine = thesis_noise(c, p, 10, 1.0, 0.25, 0.95, 0x4D);
+  const ValueNoiseField mask = thesis_noise(c, p, 7, 1.0, 0.44, 0.02, 0x4A);
+  const ValueNoiseField body = thesis_noise(c, p, 5, 0.54, 0.3, 0.69, 0x4B);
+  const ValueNoiseField rim_noise = thesis_noise(c, p, 5, 0.33, 0.60, 0.59, 0x4C);
+  const ValueNoiseField shine = thesis_noise(c, p, 10, 1.0, 0.25, 0.95, 0x4D);
   const float glow_mm = static_cast<float>(p.px_to_mm(p.glow_thickness_px));
   const float rim_mm = static_cast<float>(p.px_to_mm(p.scab_gradient_px));
   const float height_mm = static_cast<float>(p.scab_height_mm);
-  const TexelRect& box = c.wound_box;
+  const std::uint16_t skin_reflection = to_unorm16(p.skin_reflection);
   const Vec4f white(1, 1, 1, 1), black(0, 0, 0, 1);
-  for_rows(c.height(), [&](int y) {
-    const Row r = row(c, m, y);
-    for (int x = 0; x < c.width(); ++x) {
-      if (r.shape[x] < 0.5f) {
-        glow(r, x, glow_mm);
-        continue;
-      }
-      const int bx = x - box.x0, by = y - box.y0;
-      const float h = mask.at(bx, by) * body.at(bx, by);  // Figure 4.10: masked noise
-      r.height[x] = h * height_mm;
-      const float d = r.inside[x];
-      Vec4f rim = d <= rim_mm ? lerp4(scab_rim_red, black, d / rim_mm) : black;
-      rim *= rim_noise.at(bx, by);
-      const Vec4f inner = lerp4(scab_light, scab_dark, h);
-      // Eq. 4.7: finalColor = innerColor + gradientColor * (white - innerColor).
-      Vec4f out = inner + mul4(rim, white - inner);
-      out.w() = 1.0f;
-      store(r.color + 4 * x, out);
-      r.reflection[x] = shine.at(bx, by);
-    }
-  });
+  render_tiles(
+      c, m, p.skin_reflection,
+      [&](const CanvasTile& t) {
+        return Wants{t.inside > 0 || t.min_outside_mm <= glow_mm, t.inside > 0, t.inside > 0};
+      },
+      [&](const TileJob& job) {
+        const bool wound = job.info->inside > 0;
+        const float* nm = wound ? noise_tile(mask, c, job.rect, job.info->inside_box, 0) : nullptr;
+        const float* nb = wound ? noise_tile(body, c, job.rect, job.info->inside_box, 1) : nullptr;
+        const float* nr = wound ? noise_tile(rim_noise, c, job.rect, job.info->inside_box, 2) : nullptr;
+        const float* ns = wound ? noise_tile(shine, c, job.rect, job.info->inside_box, 3) : nullptr;
+        for (int y = job.rect.y0; y < job.rect.y1; ++y) {
+          const Row r = row(c, y);
+          for (int x = job.rect.x0; x < job.rect.x1; ++x) {
+            const std::size_t i = job.at(x, y);
+            if (r.shape[x] < 0.5f) {
+              glow(job.color, i, r, x, glow_mm);
+              if (job.reflection) job.reflection[i] = skin_reflection;
+              if (job.height) job.height[i] = 0.0f;
+              continue;
+            }
+            const float h = nm[i] * nb[i];  // Figure 4.10: masked noise
+            job.height[i] = h * height_mm;
+            const float d = r.inside[x];
+            Vec4f rim = d <= rim_mm ? lerp4(scab_rim_red, black, d / rim_mm) : black;
+            rim *= nr[i];
+            const Vec4f inner = lerp4(scab_light, scab_dark, h);
+            // Eq. 4.7: finalColor = innerColor + gradientColor * (white - innerColor).
+            Vec4f out = inner + mul4(rim, white - inner);
+            out.w() = 1.0f;
+            put(job.color, i, out);
+            job.reflection[i] = to_unorm16(ns[i]);
+          }
+        }
+      });
 }
 
 std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double position) const {
@@ -229,30 +384,38 @@ std::pair<double, double> MaturationKey::borders_mm(const WoundCanvas& c, double
   return {outer, outer + max_outer * shrink};
 }
 
-void MaturationKey::render_into(const WoundCanvas& c, double position, MapSet& m) const {
+void MaturationKey::render_into(const WoundCanvas& c, double position, TiledMapSet& m) const {
   check_canvas(c);
   const AbrasionParams& p = m_params;
-  prepare_map_set(m, c.width(), c.height(), p.skin_reflection);
   const auto [outer, inner] = borders_mm(c, position);
   const double half = max_outer_border_mm(c, p);
   const float fo = static_cast<float>(outer), fi = static_cast<float>(inner);
   const float inv1 = inner > outer ? static_cast<float>(1.0 / (inner - outer)) : 0.0f;
   const float inv2 = half > inner ? static_cast<float>(1.0 / (half - inner)) : 0.0f;
-  for_rows(c.height(), [&](int y) {
-    const Row r = row(c, m, y);
-    for (int x = 0; x < c.width(); ++x) {
-      const float d = r.inside[x];
-      if (r.shape[x] < 0.5f || d <= fo) {  // Algorithm 4.4, lines 3 to 5
-        std::copy_n(r.upper + 4 * x, 4, r.color + 4 * x);
-      } else if (d <= fi) {  // lines 6 to 10
-        const float t = inv1 > 0.0f ? (d - fo) * inv1 : 1.0f;
-        store(r.color + 4 * x, lerp4(load(r.upper + 4 * x), wound_red, t));
-      } else {  // lines 11 to 15
-        const float t = inv2 > 0.0f ? std::clamp((d - fi) * inv2, 0.0f, 1.0f) : 1.0f;
-        store(r.color + 4 * x, lerp4(wound_red, wound_white, t));
-      }
-    }
-  });
+  render_tiles(
+      c, m, p.skin_reflection,
+      // Only texels inside the wound deeper than the outer border differ from the skin.
+      [&](const CanvasTile& t) {
+        return Wants{t.inside > 0 && t.max_inside_mm > fo, false, false};
+      },
+      [&](const TileJob& job) {
+        for (int y = job.rect.y0; y < job.rect.y1; ++y) {
+          const Row r = row(c, y);
+          for (int x = job.rect.x0; x < job.rect.x1; ++x) {
+            const std::size_t i = job.at(x, y);
+            const float d = r.inside[x];
+            if (r.shape[x] < 0.5f || d <= fo) {  // Algorithm 4.4, lines 3 to 5
+              put(job.color, i, r.upper + 4 * x);
+            } else if (d <= fi) {  // lines 6 to 10
+              const float t = inv1 > 0.0f ? (d - fo) * inv1 : 1.0f;
+              put(job.color, i, lerp4(load(r.upper + 4 * x), wound_red, t));
+            } else {  // lines 11 to 15
+              const float t = inv2 > 0.0f ? std::clamp((d - fi) * inv2, 0.0f, 1.0f) : 1.0f;
+              put(job.color, i, lerp4(wound_red, wound_white, t));
+            }
+          }
+        }
+      });
 }
 
 std::shared_ptr<const KeyPosition> make_abrasion_key(const std::string& phase, const AbrasionParams& params) {

@@ -53,7 +53,7 @@ class VasoconstrictionKey : public KeyPosition {
  public:
   explicit VasoconstrictionKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "vasoconstriction"; }
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -66,7 +66,7 @@ class VasodilationKey : public KeyPosition {
  public:
   explicit VasodilationKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "vasodilation"; }
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -78,7 +78,7 @@ class ScabFormingKey : public KeyPosition {
  public:
   explicit ScabFormingKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "scab_forming"; }
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -91,7 +91,7 @@ class ScabKey : public KeyPosition {
  public:
   explicit ScabKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "scab"; }
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
 
  private:
   AbrasionParams m_params;
@@ -106,7 +106,7 @@ class MaturationKey : public KeyPosition {
  public:
   explicit MaturationKey(AbrasionParams params = {}) : m_params(params) {}
   std::string name() const override { return "maturation"; }
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
   bool rerenders() const override { return true; }
   /// Eq. 4.8's borders (mm) for the canvas at position p: {outer, inner}.
   std::pair<double, double> borders_mm(const WoundCanvas& canvas, double position) const;

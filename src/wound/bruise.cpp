@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -19,35 +21,52 @@ BruiseStage bruise_stage(const std::string& name) {
   throw InputError("bruise", "stage '" + name + "'", "unknown stage (fresh, blue, green, yellow, faded)");
 }
 
-void BruiseKey::render_into(const WoundCanvas& c, double, MapSet& m) const {
-  prepare_map_set(m, c.width(), c.height(), 0.25f);
+void BruiseKey::render_into(const WoundCanvas& c, double, TiledMapSet& m) const {
+  constexpr float skin_reflection = 0.25f;
+  m.reset(c.width(), c.height(), skin_reflection);
+  if (c.width() == 0 || c.height() == 0) return;
   ValueNoiseParams np;
   np.octaves = 4;
   np.persistence = 0.6;
   np.first_octave = std::max(0, static_cast<int>(std::lround(std::log2(std::max(c.texels_per_mm, 1.0)))));
   np.seed = mix64(c.seed ^ 0xB701);
-  const Image mottle = value_noise(c.width(), c.height(), np);
+  const ValueNoiseField mottle(c.width(), c.height(), np);
   const BruiseStage& s = m_stage;
+  // The tint reaches spread_mm outside the shape; tiles beyond keep the skin.
+  std::vector<CanvasTile> scratch;
+  const auto& tiles = canvas_tiles(c, scratch);
+  std::vector<std::pair<int, std::uint16_t*>> jobs;
+  for (int t = 0; t < m.tile_count(); ++t) {
+    const CanvasTile& info = tiles[static_cast<std::size_t>(t)];
+    if (info.inside > 0 || info.min_outside_mm < s.spread_mm) jobs.push_back({t, m.own_color(t)});
+  }
   parallel_for(
-      0, static_cast<std::size_t>(c.height()),
-      [&](std::size_t row) {
-        const int y = static_cast<int>(row);
-        for (int x = 0; x < c.width(); ++x) {
-          const bool in = c.shape.at(x, y) >= 0.5f;
-          // Signed distance (mm): negative inside. Weight 1 deep inside, 0 at spread_mm outside.
-          const double sd =
-              in ? -static_cast<double>(c.inside_mm.at(x, y)) : static_cast<double>(c.outside_mm.at(x, y));
-          double t = std::clamp((s.spread_mm - sd) / (s.spread_mm + s.inner_soft_mm), 0.0, 1.0);
-          t = t * t * (3.0 - 2.0 * t);
-          const float k = static_cast<float>(s.strength * t * (0.75 + 0.25 * mottle.at(x, y)));
-          const Vec4f skin = c.upper_skin.rgba(x, y);
-          Vec4f out;
-          for (int ch = 0; ch < 3; ++ch) out[ch] = skin[ch] * (1.0f + (s.tint[ch] - 1.0f) * k);
-          out.w() = 1.0f;
-          m.color.set_rgba(x, y, out);
+      0, jobs.size(),
+      [&](std::size_t j) {
+        const auto [tile, color] = jobs[j];
+        const TexelRect r = m.tile_rect(tile);
+        thread_local std::vector<float> noise;
+        noise.resize(tiled_map_tile_texels);
+        mottle.evaluate(r.x0, r.y0, r.width(), r.height(), noise.data(), tiled_map_tile);
+        for (int y = r.y0; y < r.y1; ++y) {
+          for (int x = r.x0; x < r.x1; ++x) {
+            const std::size_t i =
+                static_cast<std::size_t>(y - r.y0) * tiled_map_tile + static_cast<std::size_t>(x - r.x0);
+            const bool in = c.shape.at(x, y) >= 0.5f;
+            // Signed distance (mm): negative inside. Weight 1 deep inside, 0 at spread_mm outside.
+            const double sd =
+                in ? -static_cast<double>(c.inside_mm.at(x, y)) : static_cast<double>(c.outside_mm.at(x, y));
+            double t = std::clamp((s.spread_mm - sd) / (s.spread_mm + s.inner_soft_mm), 0.0, 1.0);
+            t = t * t * (3.0 - 2.0 * t);
+            const float k = static_cast<float>(s.strength * t * (0.75 + 0.25 * noise[i]));
+            const float* skin = c.upper_skin.pixel(x, y);
+            for (std::size_t ch = 0; ch < 3; ++ch)
+              color[4 * i + ch] = to_unorm16(skin[ch] * (1.0f + (s.tint[static_cast<int>(ch)] - 1.0f) * k));
+            color[4 * i + 3] = to_unorm16(1.0f);
+          }
         }
       },
-      8);
+      1);
 }
 
 nlohmann::json BruiseKey::describe() const {

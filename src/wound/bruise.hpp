@@ -32,7 +32,7 @@ class BruiseKey : public KeyPosition {
   std::string name() const override { return m_stage.name; }
   /// colour = skin x Lerp(1, tint, strength w m), w = smoothstep falloff of the signed distance to the
   /// border, m = 0.75 + 0.25 mottling value noise; reflection 0.25 (intact skin); height 0.
-  void render_into(const WoundCanvas& canvas, double local_position, MapSet& out) const override;
+  void render_into(const WoundCanvas& canvas, double local_position, TiledMapSet& out) const override;
   nlohmann::json describe() const override;
   const BruiseStage& stage() const { return m_stage; }
 

@@ -48,13 +48,31 @@ void Timeline::render(std::shared_ptr<const WoundCanvas> canvas) {
     if (found) continue;
     m_map_of_entry[i] = m_maps.size();
     first_of_map.push_back(i);
-    m_maps.push_back(e.key->render(*m_canvas, e.local_position));
+    m_maps.emplace_back();
+    e.key->render_into(*m_canvas, e.local_position, m_maps.back());
   }
 }
 
-const MapSet& Timeline::entry_maps(std::size_t i) const {
+const TiledMapSet& Timeline::entry_tiles(std::size_t i) const {
   if (m_maps.empty()) throw Error("wound timeline: render() was not called");
   return m_maps.at(m_map_of_entry.at(i));
+}
+
+MapSet Timeline::entry_maps(std::size_t i) const {
+  return entry_tiles(i).to_map_set(m_canvas->upper_skin);
+}
+
+bool Timeline::same_maps(std::size_t i, std::size_t j) const {
+  return &entry_tiles(i) == &entry_tiles(j);
+}
+
+void Timeline::write_entry_full(std::size_t i, MapSet& full) const {
+  const TiledMapSet& maps = entry_tiles(i);
+  const WoundCanvas& c = *m_canvas;
+  if (full.width() != c.full_width || full.height() != c.full_height) {
+    throw InputError("wound timeline", "write_entry_full", "the full map set differs from the texture size");
+  }
+  maps.write_into(c.upper_skin, full, c.region.x0, c.region.y0);
 }
 
 std::size_t Timeline::segment_at(double t) const {
@@ -71,29 +89,34 @@ double Timeline::weight_at(double t) const {
   return (t - t0) / (t1 - t0);
 }
 
-void Timeline::sample(double t, MapSet& out) const {
+void Timeline::sample(double t, TiledMapSet& out) const {
   if (m_maps.empty()) throw Error("wound timeline: render() was not called");
   const std::size_t i = segment_at(t);
   const double w = weight_at(t);
   const auto& a = m_entries[i];
   const auto& b = m_entries[i + 1];
-  const MapSet& ma = entry_maps(i);
-  const MapSet& mb = entry_maps(i + 1);
+  const TiledMapSet& ma = entry_tiles(i);
+  const TiledMapSet& mb = entry_tiles(i + 1);
   if (a.key == b.key && a.key->rerenders() && a.local_position != b.local_position && w > 0.0 && w < 1.0) {
     a.key->render_into(*m_canvas, a.local_position + (b.local_position - a.local_position) * w, out);
     return;
   }
-  if (out.width() != ma.width() || out.height() != ma.height() || out.color.channels() != 4) {
-    out = make_map_set(ma.width(), ma.height());
-  }
   if (&ma == &mb || w <= 0.0 || w >= 1.0) {
-    const MapSet& src = (w >= 1.0) ? mb : ma;
-    std::copy(src.color.data().begin(), src.color.data().end(), out.color.data().begin());
-    std::copy(src.reflection.data().begin(), src.reflection.data().end(), out.reflection.data().begin());
-    std::copy(src.height_mm.data().begin(), src.height_mm.data().end(), out.height_mm.data().begin());
+    out.share(w >= 1.0 ? mb : ma);
     return;
   }
-  lerp_map_sets(ma, mb, static_cast<float>(w), out);
+  lerp_tiled_map_sets(ma, mb, static_cast<float>(w), m_canvas->upper_skin, out);
+}
+
+void Timeline::sample(double t, MapSet& out) const {
+  TiledMapSet tiles;
+  sample(t, tiles);
+  if (out.width() != tiles.width() || out.height() != tiles.height() || out.color.channels() != 4 ||
+      out.reflection.channels() != 1 || out.height_mm.channels() != 1 || out.reflection.width() != tiles.width() ||
+      out.height_mm.width() != tiles.width()) {
+    out = make_map_set(tiles.width(), tiles.height());
+  }
+  tiles.write_into(m_canvas->upper_skin, out, 0, 0);
 }
 
 void Timeline::sample_full(double t, MapSet& full) const {
@@ -102,45 +125,9 @@ void Timeline::sample_full(double t, MapSet& full) const {
   if (full.width() != c.full_width || full.height() != c.full_height) {
     throw InputError("wound timeline", "sample_full", "the full map set differs from the texture size");
   }
-  const std::size_t i = segment_at(t);
-  const double w = weight_at(t);
-  const auto& a = m_entries[i];
-  const auto& b = m_entries[i + 1];
-  const MapSet& ma = entry_maps(i);
-  const MapSet& mb = entry_maps(i + 1);
-  if (!(a.key == b.key && a.key->rerenders() && a.local_position != b.local_position && w > 0.0 && w < 1.0) &&
-      &ma != &mb && w > 0.0 && w < 1.0) {
-    // Blend straight into the full set, one region row at a time (no temporary maps).
-    const float tw = static_cast<float>(w);
-    MapSet& out = full;
-    const int x0 = c.region.x0, y0 = c.region.y0;
-    const std::size_t n = static_cast<std::size_t>(c.region.width());
-    const float s = 1.0f - tw;
-    parallel_for(
-        0, static_cast<std::size_t>(c.region.height()),
-        [&](std::size_t row) {
-          const int y = static_cast<int>(row);
-          const float* ac = ma.color.pixel(0, y);
-          const float* bc = mb.color.pixel(0, y);
-          float* oc = out.color.pixel(x0, y0 + y);
-          for (std::size_t k = 0; k < 4 * n; ++k) oc[k] = ac[k] * s + bc[k] * tw;
-          const float* ar = ma.reflection.pixel(0, y);
-          const float* br = mb.reflection.pixel(0, y);
-          float* orf = out.reflection.pixel(x0, y0 + y);
-          const float* ah = ma.height_mm.pixel(0, y);
-          const float* bh = mb.height_mm.pixel(0, y);
-          float* oh = out.height_mm.pixel(x0, y0 + y);
-          for (std::size_t k = 0; k < n; ++k) {
-            orf[k] = ar[k] * s + br[k] * tw;
-            oh[k] = ah[k] * s + bh[k] * tw;
-          }
-        },
-        16);
-    return;
-  }
-  MapSet part;
-  sample(t, part);
-  paste_map_set(full, part, c.region);
+  TiledMapSet tiles;
+  sample(t, tiles);
+  tiles.write_into(c.upper_skin, full, c.region.x0, c.region.y0);
 }
 
 nlohmann::json Timeline::describe() const {

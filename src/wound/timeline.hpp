@@ -22,6 +22,7 @@
 
 #include "wound/key_position.hpp"
 #include "wound/map_set.hpp"
+#include "wound/tiled_map_set.hpp"
 #include "wound/wound_canvas.hpp"
 
 namespace forensim {
@@ -44,18 +45,29 @@ class Timeline {
   void render(std::shared_ptr<const WoundCanvas> canvas);
 
   const std::vector<TimelineEntry>& entries() const { return m_entries; }
-  /// Maps of entry i (region size). Requires render().
-  const MapSet& entry_maps(std::size_t i) const;
+  /// Tiled maps of entry i (region size). Requires render().
+  const TiledMapSet& entry_tiles(std::size_t i) const;
+  /// Maps of entry i as a plain map set of the region's size. Requires render().
+  MapSet entry_maps(std::size_t i) const;
+  /// True when entries i and j output the same maps (a hold pair: the same key at the same position).
+  bool same_maps(std::size_t i, std::size_t j) const;
+  /// Writes entry i's maps into the region of a full-texture set (as sample_full).
+  void write_entry_full(std::size_t i, MapSet& full) const;
   /// Index of the entry pair sampled at time t: the last i with time_i <= t (i + 1 < #entries), clamped.
   std::size_t segment_at(double time_s) const;
   /// Blend weight of the segment's right entry at t (0 before the first entry, 1 after the last).
   double weight_at(double time_s) const;
 
-  /// Maps at `time_s` (region size) into `out` (resized only when its size differs). Times before the
-  /// first entry give the first entry's maps, after the last the last one's.
+  /// Maps at `time_s` into `out` (tiled, region size), copy-on-write: tiles where the two neighbouring key
+  /// positions are both the skin stay the skin, tiles they share (or all of them at a key, in a hold or an
+  /// instant cut) are shared, and only the others are blended, so a sample costs what its changed texels
+  /// cost. Buffers `out` alone holds are reused. Times before the first entry give the first entry's maps,
+  /// after the last the last one's.
+  void sample(double time_s, TiledMapSet& out) const;
+  /// sample() as a plain map set of the region's size (resized only when its size differs).
   void sample(double time_s, MapSet& out) const;
-  /// Writes the maps at `time_s` into the region of a full-texture set `full` whose texels outside the
-  /// region already hold the skin (from skin_map_set). Throws InputError for a set of another size.
+  /// Writes the maps at `time_s` into the region of a full-texture set `full` (texels outside the region
+  /// are left as they are: the skin, from skin_map_set). Throws InputError for a set of another size.
   void sample_full(double time_s, MapSet& full) const;
 
   /// JSON description: entries with their times (seconds and human), labels, keys and parameters.
@@ -65,7 +77,7 @@ class Timeline {
  private:
   std::vector<TimelineEntry> m_entries;
   std::vector<std::size_t> m_map_of_entry;  // entry -> index into m_maps
-  std::vector<MapSet> m_maps;
+  std::vector<TiledMapSet> m_maps;
   std::shared_ptr<const WoundCanvas> m_canvas;
 };
 

@@ -115,6 +115,61 @@ double diameter_of(const std::vector<Vec3>& points) {
 
 }  // namespace
 
+namespace {
+
+std::vector<CanvasTile> compute_tiles(const WoundCanvas& c) {
+  const int tx = (c.width() + tiled_map_tile - 1) / tiled_map_tile;
+  const int ty = (c.height() + tiled_map_tile - 1) / tiled_map_tile;
+  std::vector<CanvasTile> tiles(static_cast<std::size_t>(tx) * static_cast<std::size_t>(ty));
+  if (c.shape.width() != c.width() || c.shape.height() != c.height() || c.inside_mm.width() != c.width() ||
+      c.inside_mm.height() != c.height() || c.outside_mm.width() != c.width() || c.outside_mm.height() != c.height()) {
+    throw InputError("wound canvas", "maps", "shape and distances must be of the region's size");
+  }
+  parallel_for(
+      0, tiles.size(),
+      [&](std::size_t t) {
+        CanvasTile& tile = tiles[t];
+        const int x0 = static_cast<int>(t % static_cast<std::size_t>(tx)) * tiled_map_tile;
+        const int y0 = static_cast<int>(t / static_cast<std::size_t>(tx)) * tiled_map_tile;
+        const int x1 = std::min(x0 + tiled_map_tile, c.width()), y1 = std::min(y0 + tiled_map_tile, c.height());
+        TexelRect box{x1, y1, x0, y0};
+        for (int y = y0; y < y1; ++y) {
+          const float* shape = c.shape.pixel(0, y);
+          const float* in = c.inside_mm.pixel(0, y);
+          const float* out = c.outside_mm.pixel(0, y);
+          for (int x = x0; x < x1; ++x) {
+            tile.max_inside_mm = std::max(tile.max_inside_mm, in[x]);
+            if (shape[x] >= 0.5f) {
+              ++tile.inside;
+              box.x0 = std::min(box.x0, x);
+              box.y0 = std::min(box.y0, y);
+              box.x1 = std::max(box.x1, x + 1);
+              box.y1 = std::max(box.y1, y + 1);
+            } else if (out[x] < tile.min_outside_mm) {
+              tile.min_outside_mm = out[x];
+            }
+          }
+        }
+        if (tile.inside > 0) tile.inside_box = box;
+      },
+      1);
+  return tiles;
+}
+
+}  // namespace
+
+void index_canvas_tiles(WoundCanvas& canvas) {
+  canvas.tiles = compute_tiles(canvas);
+}
+
+const std::vector<CanvasTile>& canvas_tiles(const WoundCanvas& c, std::vector<CanvasTile>& scratch) {
+  const std::size_t tx = static_cast<std::size_t>((c.width() + tiled_map_tile - 1) / tiled_map_tile);
+  const std::size_t ty = static_cast<std::size_t>((c.height() + tiled_map_tile - 1) / tiled_map_tile);
+  if (c.tiles.size() == tx * ty) return c.tiles;
+  scratch = compute_tiles(c);
+  return scratch;
+}
+
 TexelRect shape_bounds(const Image& shape) {
   TexelRect r{shape.width(), shape.height(), 0, 0};
   for (int y = 0; y < shape.height(); ++y) {
@@ -361,6 +416,7 @@ WoundCanvas make_wound_canvas(const TriMesh& mesh, const UvRaster& raster, const
   c.wound_box = shape_bounds(c.shape);
   c.upper_skin = crop_rgba(upper_skin, c.region);
   c.lower_skin = crop_rgba(lower_skin, c.region);
+  index_canvas_tiles(c);
   return c;
 }
 

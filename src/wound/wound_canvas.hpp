@@ -10,6 +10,7 @@
 /// the texel rectangle outside which every key position's maps equal the healthy skin.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/types.hpp"
@@ -17,6 +18,7 @@
 #include "image/image.hpp"
 #include "texture/uv_bake.hpp"
 #include "wound/map_set.hpp"
+#include "wound/tiled_map_set.hpp"
 
 namespace forensim {
 
@@ -46,6 +48,15 @@ struct CanvasOptions {
   std::uint64_t seed = 1;
 };
 
+/// What a tile of tiled_map_tile texels of a canvas holds, so key positions skip the tiles where their maps
+/// equal the skin.
+struct CanvasTile {
+  std::size_t inside = 0;                                         ///< texels inside the wound
+  float min_outside_mm = std::numeric_limits<float>::infinity();  ///< least outside_mm of its outside texels
+  float max_inside_mm = 0.0f;                                     ///< largest inside_mm of its texels
+  TexelRect inside_box;  ///< bounding box of its inside texels (region coordinates; empty when none)
+};
+
 struct WoundCanvas {
   int full_width = 0, full_height = 0;  ///< size of the whole texture
   TexelRect region;                     ///< texels where the wound's maps may differ from the skin
@@ -60,10 +71,19 @@ struct WoundCanvas {
   std::size_t wound_texels = 0;      ///< texels inside the shape
   TexelRect wound_box;               ///< bounding box of the shape's texels (region coordinates)
   DistanceMode distance = DistanceMode::surface;
+  /// Per tile of the region (row-major, tiles of tiled_map_tile texels; see index_canvas_tiles).
+  std::vector<CanvasTile> tiles;
 
   int width() const { return region.width(); }
   int height() const { return region.height(); }
 };
+
+/// Fills canvas.tiles from its shape and distances (make_wound_canvas does this; call it after building or
+/// changing a canvas's maps by hand).
+void index_canvas_tiles(WoundCanvas& canvas);
+
+/// canvas.tiles when they match the region, else the same computed into `scratch`.
+const std::vector<CanvasTile>& canvas_tiles(const WoundCanvas& canvas, std::vector<CanvasTile>& scratch);
 
 /// Bounding box of the texels with channel 0 >= 0.5 (empty when there are none).
 TexelRect shape_bounds(const Image& shape);

@@ -27,6 +27,13 @@ TEST(Demo, WritesReportWithPicturesAndTimings) {
   EXPECT_TRUE(record["facts"]["forearm_uv"]["overlap_free"].get<bool>());
   EXPECT_TRUE(record["facts"]["ct_phantom"]["skin_closed"].get<bool>());
   EXPECT_TRUE(record["facts"]["ct_phantom"]["bone_closed"].get<bool>());
+  EXPECT_NE(html.find("a wound across a UV seam"), std::string::npos);
+  if (!test::data_path("head-scan-lee-perry-smith/LeePerrySmith.glb").empty()) {
+    // On the surface the wound covers both sides of the seam; painted in UV space only one.
+    EXPECT_TRUE(record["facts"]["wound_seam"]["surface_inside_both_sides"].get<bool>());
+    EXPECT_TRUE(record["facts"]["wound_seam"]["uv_inside_one_side_only"].get<bool>());
+    EXPECT_TRUE(std::filesystem::exists(dir / "wound_seam_head.png"));
+  }
   if (!test::data_path("ct-head-headsq/quarter.nhdr").empty()) {
     EXPECT_TRUE(record["facts"]["ct_headsq"]["skin_closed"].get<bool>());
     EXPECT_TRUE(record["facts"]["ct_headsq"]["bone_closed"].get<bool>());

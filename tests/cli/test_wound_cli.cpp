@@ -5,8 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 #include "core/atomic_file.hpp"
@@ -77,4 +80,23 @@ TEST(WoundCli, BadInputExitsNonZeroNamingTheProblemAndWritesNothing) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("3days"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "d"));
+}
+
+TEST(WoundCli, BenchTimesEachPhaseAllPhasesAndATimelineSample) {
+  const auto dir = test::scratch_dir("wound_cli_bench");
+  const auto json = dir / "bench.json";
+  const auto r = run_cli("bench wound --size small --repeat 1 --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto out = nlohmann::json::parse(read_file(json));
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0]["target"], "wound");
+  std::vector<std::string> steps;
+  for (const auto& row : out[0]["rows"]) {
+    steps.push_back(row["step"]);
+    EXPECT_GT(row["median_s"].get<double>(), 0.0) << row["step"];
+  }
+  for (const char* step : {"vasoconstriction 1024^2", "vasodilation 1024^2", "scab_forming 1024^2", "scab 1024^2",
+                           "maturation 1024^2", "all phases 1024^2", "timeline sample 1024^2"}) {
+    EXPECT_NE(std::find(steps.begin(), steps.end(), step), steps.end()) << step;
+  }
 }

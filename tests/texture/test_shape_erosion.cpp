@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -48,6 +49,25 @@ TEST(ShapeErosion, EqualsTheBruteForceMinimumAlongRowsAndColumns) {
         ASSERT_EQ(eroded.at(x, y), expected) << x << "," << y;
       }
   }
+}
+
+TEST(ShapeErosion, BinaryShapesGiveTheSameResultAsExplicitWidths) {
+  // 0/1 shapes take the linear-time path; it must equal Algorithm 3.1 with the same random widths.
+  Image shape(57, 41, 1, 0.0f, PixelEncoding::data);
+  RandomStream rng(9, 0);
+  for (int y = 0; y < 41; ++y)
+    for (int x = 0; x < 57; ++x) {
+      const double dx = (x - 28.0) / 22.0, dy = (y - 20.0) / 15.0;
+      shape.at(x, y) = dx * dx + dy * dy < 1.0 && rng.uniform() < 0.97 ? 1.0f : 0.0f;
+    }
+  for (const auto& [lo, hi] : {std::pair{3, 5}, std::pair{3, 10}, std::pair{1, 1}, std::pair{6, 20}}) {
+    for (ErosionAxis axis : {ErosionAxis::x, ErosionAxis::y}) {
+      const Image fast = erode_shape(shape, lo, hi, 31, axis);
+      const Image brute = erode_shape(shape, random_erosion_widths(57, 41, lo, hi, 31), axis);
+      ASSERT_EQ(fast.data(), brute.data()) << lo << ".." << hi;
+    }
+  }
+  EXPECT_THROW(erode_shape(shape, 5, 3, 1), InputError);
 }
 
 TEST(ShapeErosion, ShrinksADiscOnlyAlongTheAxisAndIsDeterministic) {

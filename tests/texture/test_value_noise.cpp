@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -195,4 +197,33 @@ TEST(ValueNoise, RejectsBadParameters) {
   params.octaves = 8;
   const Image small = value_noise(5, 3, params);
   for (float v : small.data()) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(ValueNoise, FieldOnRectanglesEqualsTheWholeNoise) {
+  // Sizes that are not multiples of the periods (wrap-around taps) and periods larger than the noise.
+  for (const auto& [w, h, octaves, first] :
+       {std::tuple{70, 45, 5, 0}, std::tuple{33, 100, 7, 1}, std::tuple{64, 64, 10, 0}}) {
+    ValueNoiseParams params;
+    params.octaves = octaves;
+    params.first_octave = first;
+    params.persistence = 0.54;
+    params.bias = 0.3;
+    params.gain = 0.69;
+    params.seed = 1234;
+    const Image whole = value_noise(w, h, params);
+    const ValueNoiseField field(w, h, params);
+    std::vector<float> out(static_cast<std::size_t>(w * h), -1.0f);
+    // Tiles of 16 x 16, clipped at the edges.
+    for (int y0 = 0; y0 < h; y0 += 16)
+      for (int x0 = 0; x0 < w; x0 += 16)
+        field.evaluate(x0, y0, 16, 16, out.data() + static_cast<std::size_t>(y0 * w + x0), static_cast<std::size_t>(w));
+    // In float (as a shader) against the double reference.
+    for (std::size_t i = 0; i < out.size(); ++i)
+      ASSERT_NEAR(out[i], whole.data()[i], 1e-5) << w << "x" << h << " " << i;
+    // A texel's value does not depend on the rectangle it is evaluated in.
+    float one = -1.0f;
+    field.evaluate(w / 2, h / 3, 1, 1, &one, 1);
+    EXPECT_EQ(one, out[static_cast<std::size_t>((h / 3) * w + w / 2)]);
+  }
+  EXPECT_THROW(ValueNoiseField(0, 4, ValueNoiseParams{}), InputError);
 }
