@@ -54,8 +54,12 @@ PcgResult preconditioned_cg(const LinearOperator& a, const LinearOperator& preco
   if (size_of(x) != n) x = Eigen::VectorXd::Zero(b.size());
   PcgResult result;
   Eigen::VectorXd r, z, p, q;
-  a(x, q);
-  r = b - q;
+  if (x.isZero(0.0)) {
+    r = b;  // a zero guess needs no product (inexact Newton steps start from zero)
+  } else {
+    a(x, q);
+    r = b - q;
+  }
   if (converged(r, 0)) {
     result.converged = true;
     return result;

@@ -120,36 +120,24 @@ Mat3 rotation_from_deformation(const Mat3& deformation_gradient) {
 
 Mat3 polar_rotation(const Mat3& deformation_gradient) {
   Mat3 x = deformation_gradient;
-  double det = x.determinant();
-  if (!(det > 0.0) || !std::isfinite(det)) return rotation_from_deformation(deformation_gradient);
-  for (int iteration = 0; iteration < 20; ++iteration) {
+  bool scaled = true;
+  for (int iteration = 0; iteration < 30; ++iteration) {
     // X^-T = cofactor(X) / det X.
     Mat3 cofactor;
     cofactor.col(0) = x.col(1).cross(x.col(2));
     cofactor.col(1) = x.col(2).cross(x.col(0));
     cofactor.col(2) = x.col(0).cross(x.col(1));
-    const double zeta = 1.0 / std::cbrt(det);
+    const double det = x.col(0).dot(cofactor.col(0));
+    if (!(det > 0.0) || !std::isfinite(det)) break;  // inverted or degenerate: the SVD decides
+    double zeta = 1.0;
+    if (scaled) zeta = std::sqrt(std::sqrt(cofactor.squaredNorm() / (det * det * x.squaredNorm())));
     const Mat3 next = 0.5 * (zeta * x + cofactor / (zeta * det));
-    const double change = (next - x).cwiseAbs().sum();
+    const double change = (next - x).cwiseAbs().maxCoeff();
     x = next;
-    if (change < 1e-13) return x;
-    det = x.determinant();
-    if (!(det > 0.0) || !std::isfinite(det)) break;
+    if (change < 1e-8) return x;
+    scaled = change > 1e-2;  // near convergence scaling only perturbs the quadratic rate
   }
   return rotation_from_deformation(deformation_gradient);
-}
-
-Mat3 tet_field_gradient(const Mat34& grads, const Mat34& corners) {
-  return corners * grads.transpose();
-}
-
-Mat3 corotated_stress(const Mat3& r, const Mat3& g, double lambda, double mu, double s) {
-  const Mat3 rg = r.transpose() * g;
-  Mat3 e = 0.5 * (rg + rg.transpose());
-  e.diagonal().array() -= 1.0 + s;
-  Mat3 sigma = (2.0 * mu) * e;
-  sigma.diagonal().array() += lambda * e.trace();
-  return sigma;
 }
 
 Vec12 rotate_blocks(const Mat3& r, const Vec12& v) {
