@@ -5,6 +5,7 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <memory>
 #include <mutex>
 
@@ -54,6 +55,22 @@ double parallel_sum(std::size_t begin, std::size_t end, const std::function<doub
     double s = 0.0;
     for (std::size_t i = lo; i < hi; ++i) s += f(i);
     partial[b] = s;
+  });
+  double total = 0.0;
+  for (double s : partial) total += s;
+  return total;
+}
+
+double parallel_sum_chunks(std::size_t begin, std::size_t end,
+                           const std::function<double(std::size_t, std::size_t)>& chunk, std::size_t block) {
+  if (begin >= end) return 0.0;
+  if (block == 0) block = 1;
+  const std::size_t blocks = (end - begin + block - 1) / block;
+  if (blocks == 1) return chunk(begin, end);
+  std::vector<double> partial(blocks, 0.0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    const std::size_t lo = begin + b * block;
+    partial[b] = chunk(lo, std::min(end, lo + block));
   });
   double total = 0.0;
   for (double s : partial) total += s;

@@ -27,4 +27,10 @@ void parallel_for_chunks(std::size_t begin, std::size_t end, const std::function
 double parallel_sum(std::size_t begin, std::size_t end, const std::function<double(std::size_t)>& f,
                     std::size_t block = 4096);
 
+/// Deterministic sum of chunk(lo, hi) over [begin, end) cut into fixed blocks of `block` items (the last one
+/// shorter): one call per block, in parallel, then the block results added in block order. For loops whose
+/// body is too small for a call per item (vector dot products).
+double parallel_sum_chunks(std::size_t begin, std::size_t end,
+                           const std::function<double(std::size_t, std::size_t)>& chunk, std::size_t block = 4096);
+
 }  // namespace forensim

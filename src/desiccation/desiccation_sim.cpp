@@ -1,5 +1,6 @@
 #include "desiccation/desiccation_sim.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -7,6 +8,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "geometry/mesh_measures.hpp"
 
 namespace forensim {
@@ -82,15 +84,28 @@ DesiccationState initial_desiccation_state(const DesiccationModel& model) {
   return state;
 }
 
-std::vector<double> tet_moisture(const DesiccationModel& model, const DesiccationState& state) {
+namespace {
+
+void tet_moisture_into(const DesiccationModel& model, const DesiccationState& state, std::vector<double>& x) {
   const TetMesh& mesh = model.body.volume;
-  std::vector<double> x(mesh.tet_count(), 0.0);
-  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-    if (!model.tet_active[t]) continue;
-    double sum = 0.0;
-    for (Index v : mesh.tets[t]) sum += state.node_moisture[static_cast<std::size_t>(v)];
-    x[t] = 0.25 * sum;
-  }
+  if (x.size() != mesh.tet_count())
+    x = std::vector<double>(mesh.tet_count());  // resize() trips GCC 12's -Wnull-dereference
+  parallel_for_chunks(0, mesh.tet_count(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = lo; t < hi; ++t) {
+      double sum = 0.0;
+      if (model.tet_active[t]) {
+        for (Index v : mesh.tets[t]) sum += state.node_moisture[static_cast<std::size_t>(v)];
+      }
+      x[t] = 0.25 * sum;
+    }
+  });
+}
+
+}  // namespace
+
+std::vector<double> tet_moisture(const DesiccationModel& model, const DesiccationState& state) {
+  std::vector<double> x;
+  tet_moisture_into(model, state, x);
   return x;
 }
 
@@ -102,9 +117,12 @@ std::vector<double> tet_volume_ratio(const DesiccationModel& model, const Desicc
 }
 
 std::size_t inverted_tet_count(const TetMesh& mesh, const std::vector<Vec3>& positions) {
-  std::size_t count = 0;
-  for (const Tet& t : mesh.tets) count += tet_volume_at(positions, t) <= 0.0 ? 1 : 0;
-  return count;
+  const double count = parallel_sum_chunks(0, mesh.tet_count(), [&](std::size_t lo, std::size_t hi) {
+    double n = 0.0;
+    for (std::size_t t = lo; t < hi; ++t) n += tet_volume_at(positions, mesh.tets[t]) <= 0.0 ? 1.0 : 0.0;
+    return n;
+  });
+  return static_cast<std::size_t>(count);
 }
 
 DesiccationTotals desiccation_totals(const DesiccationModel& model, const DesiccationState& state) {
@@ -153,7 +171,7 @@ struct DesiccationSolver::Impl {
   const DesiccationModel* model = nullptr;
   DiffusionSolver diffusion;
   std::unique_ptr<CorotationalSolver> elastic;
-  std::vector<double> capacity, diffusivity, strain;
+  std::vector<double> capacity, diffusivity, strain, scratch;
 
   explicit Impl(const DesiccationModel& m)
       : model(&m), diffusion(m.body.volume, m.tet_active, m.skin_faces, m.settings.diffusion) {
@@ -185,14 +203,25 @@ DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt
 
   // Moisture: capacity = dry mass per current volume (eq. 7 with the actual volume ratio), D from moisture.
   auto start = std::chrono::steady_clock::now();
-  const std::vector<double> x_tet = tet_moisture(model, state);
-  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-    if (!model.tet_active[t]) continue;
-    const double v = tet_volume_at(state.positions, mesh.tets[t]);
-    if (!(v > 0.0)) throw NumericError("desiccation step: tet " + std::to_string(t) + " is inverted");
-    s.capacity[t] = rho_d0 * model.tet_rest_volume_mm3[t] / v;
-    s.diffusivity[t] = moisture_diffusivity_m2_per_s(tissue, x_tet[t]);
-  }
+  std::vector<double>& x_tet = s.scratch;
+  tet_moisture_into(model, state, x_tet);
+  std::atomic<std::size_t> inverted_tet{mesh.tet_count()};
+  parallel_for_chunks(0, mesh.tet_count(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = lo; t < hi; ++t) {
+      if (!model.tet_active[t]) continue;
+      const double v = tet_volume_at(state.positions, mesh.tets[t]);
+      if (!(v > 0.0)) {
+        std::size_t current = inverted_tet.load();
+        while (t < current && !inverted_tet.compare_exchange_weak(current, t)) {
+        }
+        continue;
+      }
+      s.capacity[t] = rho_d0 * model.tet_rest_volume_mm3[t] / v;
+      s.diffusivity[t] = moisture_diffusivity_m2_per_s(tissue, x_tet[t]);
+    }
+  });
+  if (inverted_tet.load() < mesh.tet_count())
+    throw NumericError("desiccation step: tet " + std::to_string(inverted_tet.load()) + " is inverted");
   s.diffusion.set_positions(state.positions);
   s.diffusion.set_tet_capacity(s.capacity);
   s.diffusion.set_tet_diffusivity(s.diffusivity);
@@ -203,11 +232,14 @@ DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt
   report.seconds_diffusion = seconds_since(start);
 
   // Shrinkage strain per tet from its new moisture (eq. 28; strain zero at X0, see shrinkage_strain).
-  if (s.elastic && deform) {
+  const bool deforming = s.elastic && deform;
+  if (deforming) {
     start = std::chrono::steady_clock::now();
-    const std::vector<double> x_new = tet_moisture(model, state);
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
-      s.strain[t] = model.tet_active[t] ? shrinkage_strain(volume_ratio(tissue, x_new[t])) : 0.0;
+    tet_moisture_into(model, state, x_tet);
+    parallel_for_chunks(0, mesh.tet_count(), [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t t = lo; t < hi; ++t)
+        s.strain[t] = model.tet_active[t] ? shrinkage_strain(volume_ratio(tissue, x_tet[t])) : 0.0;
+    });
     s.elastic->set_tet_shrinkage_strain(s.strain);
     ElasticState elastic{std::move(state.positions), std::move(state.velocities)};
     if (model.settings.quasi_static) {
@@ -215,11 +247,13 @@ DesiccationStepReport DesiccationSolver::step(DesiccationState& state, double dt
     } else {
       s.elastic->step(elastic, dt_s);
     }
+    report.deformation_cg_iterations = s.elastic->last_cg_iterations();
     state.positions = std::move(elastic.positions);
     state.velocities = std::move(elastic.velocities);
     report.seconds_deformation = seconds_since(start);
   }
-  report.inverted_tets = inverted_tet_count(mesh, state.positions);
+  // Without a deformation the shape is the one whose flesh tets were all checked positive above.
+  report.inverted_tets = deforming ? inverted_tet_count(mesh, state.positions) : 0;
   state.time_s += dt_s;
   ++state.step_count;
   return report;

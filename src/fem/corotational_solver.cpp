@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "fem/pcg.hpp"
 #include "fem/tet_element.hpp"
 
 namespace forensim {
@@ -52,11 +53,9 @@ struct CorotationalSolver::Impl {
   std::size_t node_count = 0;
   std::vector<Tet> tets;
   std::vector<Vec3> rest;
-  std::vector<Vec12> rest_corners;
-  std::vector<Mat3> rest_edge_inverse;
   std::vector<Mat34> grads;
   std::vector<double> volumes;
-  std::vector<Mat6> elasticity;  // internal units (kPa)
+  std::vector<Vec2> lame;  // (lambda, mu) per tet, internal units (kPa)
   std::vector<std::uint8_t> rigid;
   std::vector<double> shrinkage;
   std::vector<double> mass;         // kg per node
@@ -65,85 +64,210 @@ struct CorotationalSolver::Impl {
   std::vector<std::uint8_t> fixed;  // per node
   std::vector<Index> user_fixed;
   std::vector<Index> loose;  // nodes of no tet
+  std::vector<std::uint8_t> is_loose;
+
+  // Tets with a free node (the others exert no force on free nodes), and per node the corners of those tets
+  // that it is (4 t + corner, increasing): element results go to a corner buffer and nodes gather them in
+  // a fixed order, so sums do not depend on the thread count.
+  std::vector<Index> live_tets;
+  std::vector<int> node_start, node_corners;
+  mutable std::vector<Vec3> corner_buffer;
+  mutable std::vector<double> tet_energy;
 
   SparsityPattern pattern;
   SparseMatrix system;
   std::vector<std::ptrdiff_t> masked_entries;  // value indices zeroed for fixed dofs
   std::vector<std::ptrdiff_t> fixed_diagonals;
-  std::unique_ptr<SparseSpdSolver> dynamic_solver;  // created on first use, analysed once
-  std::unique_ptr<SparseSpdSolver> static_solver;
 
-  SparseSpdSolver& get_solver(std::unique_ptr<SparseSpdSolver>& slot, SparseSolverKind kind) {
-    if (!slot) {
-      slot = make_sparse_solver(kind, settings.cg_tolerance);
-      slot->analyse(system);
-    }
-    return *slot;
+  /// A factorised (or diagonal) preconditioner mass_scale M + stiffness_scale K_rest.
+  struct Preconditioner {
+    double mass_scale = -1.0, stiffness_scale = -1.0;
+    std::unique_ptr<SparseSpdSolver> factor;
+    Eigen::VectorXd inverse_diagonal;
+  };
+  Preconditioner static_preconditioner, dynamic_preconditioner;
+  std::vector<Mat3> rotations;  // polar rotations at the last evaluate()
+  Mat3 overall_rotation = Mat3::Identity();
+  int cg_iterations = 0;
+
+  Mat6 elasticity(std::size_t t) const {
+    Mat6 c = Mat6::Zero();
+    c.topLeftCorner<3, 3>().setConstant(lame[t][0]);
+    c.topLeftCorner<3, 3>().diagonal().array() += 2.0 * lame[t][1];
+    c.bottomRightCorner<3, 3>().diagonal().setConstant(lame[t][1]);
+    return c;
   }
-  std::vector<Mat3> rotations;
 
-  Mat12 stiffness(std::size_t t) const {
+  Mat12 rest_stiffness(std::size_t t) const {
     const Mat6x12 b = tet_strain_matrix(grads[t]);
-    const Mat12 k = volumes[t] * (b.transpose() * elasticity[t] * b);
+    const Mat12 k = volumes[t] * (b.transpose() * elasticity(t) * b);
     return 0.5 * (k + k.transpose());
   }
 
-  Vec12 eigen_force(std::size_t t) const {
-    if (rigid[t] != 0 || shrinkage[t] == 0.0) return Vec12::Zero();
-    return tet_eigenstrain_force(grads[t], volumes[t], elasticity[t], shrinkage[t]);
+  double strain_of(std::size_t t) const { return rigid[t] != 0 ? 0.0 : shrinkage[t]; }
+
+  Mat34 corners(const Eigen::VectorXd& x, std::size_t t) const {
+    Mat34 c;
+    for (int a = 0; a < 4; ++a) c.col(a) = x.segment<3>(3 * static_cast<Eigen::Index>(tets[t][a]));
+    return c;
   }
 
-  TetCorners corners(const std::vector<Vec3>& x, std::size_t t) const {
-    const Tet& tet = tets[t];
-    return {x[static_cast<std::size_t>(tet[0])], x[static_cast<std::size_t>(tet[1])],
-            x[static_cast<std::size_t>(tet[2])], x[static_cast<std::size_t>(tet[3])]};
+  /// out (3 #V) = per node the sum of its corner_buffer entries (fixed nodes: 0).
+  void gather(Eigen::VectorXd& out) const {
+    out.resize(static_cast<Eigen::Index>(3 * node_count));
+    parallel_for_chunks(
+        0, node_count,
+        [&](std::size_t lo, std::size_t hi) {
+          for (std::size_t n = lo; n < hi; ++n) {
+            Vec3 sum = Vec3::Zero();
+            if (fixed[n] == 0) {
+              for (int i = node_start[n]; i < node_start[n + 1]; ++i)
+                sum += corner_buffer[static_cast<std::size_t>(node_corners[static_cast<std::size_t>(i)])];
+            }
+            out.segment<3>(3 * static_cast<Eigen::Index>(n)) = sum;
+          }
+        },
+        512);
   }
 
-  void update_rotations(const std::vector<Vec3>& x) {
-    rotations.resize(tets.size());
-    parallel_for(0, tets.size(), [&](std::size_t t) {
-      rotations[t] = rotation_from_deformation(tet_deformation_gradient(corners(x, t), rest_edge_inverse[t]));
-    });
-  }
-
-  /// Elastic forces (internal units) with the current `rotations`, scattered by colour (deterministic).
-  Eigen::VectorXd forces(const std::vector<Vec3>& x) const {
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(3 * node_count));
-    for (const auto& colour : pattern.colours()) {
-      parallel_for(
-          0, colour.size(),
-          [&](std::size_t i) {
-            const auto t = static_cast<std::size_t>(colour[i]);
-            const Vec12 fe = tet_corotational_force(stiffness(t), rotations[t], stack_corners(corners(x, t)),
-                                                    rest_corners[t], eigen_force(t));
-            for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets[t][a]) += fe.segment<3>(3 * a);
-          },
-          64);
-    }
-    for (std::size_t n = 0; n < node_count; ++n) f.segment<3>(static_cast<Eigen::Index>(3 * n)) += external[n];
-    return f;
-  }
-
-  /// Total potential (internal units): elastic energy minus the work of the external forces.
-  double potential(const std::vector<Vec3>& x) const {
-    const double elastic = parallel_sum(0, tets.size(), [&](std::size_t t) {
-      const double strain = rigid[t] != 0 ? 0.0 : shrinkage[t];
-      return tet_corotational_energy(corners(x, t), rest_edge_inverse[t], volumes[t], elasticity[t], strain);
-    });
+  /// Rotations, elastic + external forces (fixed dofs zeroed) and the potential energy (elastic energy minus
+  /// the external work) at x, internal units.
+  double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& force) {
+    rotations.resize(tets.size(), Mat3::Identity());
+    tet_energy.resize(live_tets.size());
+    parallel_for_chunks(
+        0, live_tets.size(),
+        [&](std::size_t lo, std::size_t hi) {
+          for (std::size_t i = lo; i < hi; ++i) {
+            const auto t = static_cast<std::size_t>(live_tets[i]);
+            const Mat3 f = tet_field_gradient(grads[t], corners(x, t));
+            const Mat3 r = polar_rotation(f);
+            rotations[t] = r;
+            const Mat3 sigma = corotated_stress(r, f, lame[t][0], lame[t][1], strain_of(t));
+            // e : sigma with e = sym(R^T F) - (1 + s) I recovered from sigma = lambda tr(e) I + 2 mu e.
+            const Mat3 rf = r.transpose() * f;
+            Mat3 e = 0.5 * (rf + rf.transpose());
+            e.diagonal().array() -= 1.0 + strain_of(t);
+            tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum();
+            const Mat34 fc = -volumes[t] * (r * sigma) * grads[t];
+            for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+          }
+        },
+        256);
+    gather(force);
     double work = 0.0;
-    for (std::size_t n = 0; n < node_count; ++n) work += external[n].dot(x[n]);
+    for (std::size_t n = 0; n < node_count; ++n) {
+      if (fixed[n] != 0) continue;
+      force.segment<3>(3 * static_cast<Eigen::Index>(n)) += external[n];
+      work += external[n].dot(x.segment<3>(3 * static_cast<Eigen::Index>(n)));
+    }
+    const double elastic = parallel_sum_chunks(0, tet_energy.size(), [&](std::size_t lo, std::size_t hi) {
+      double sum = 0.0;
+      for (std::size_t i = lo; i < hi; ++i) sum += tet_energy[i];
+      return sum;
+    });
     return elastic - work;
   }
 
-  /// system = mass_scale M + stiffness_scale K' with fixed dofs replaced by identity rows and columns.
-  void assemble(double mass_scale, double stiffness_scale) {
-    pattern.assemble_block(
-        [&](std::size_t t, Mat12& ke) { ke = stiffness_scale * rotate_stiffness(rotations[t], stiffness(t)); }, system);
+  /// out = mass_scale M v + stiffness_scale K'(rotations) v, identity on fixed dofs (matrix-free).
+  void apply_warped(double mass_scale, double stiffness_scale, const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+    parallel_for_chunks(
+        0, live_tets.size(),
+        [&](std::size_t lo, std::size_t hi) {
+          for (std::size_t i = lo; i < hi; ++i) {
+            const auto t = static_cast<std::size_t>(live_tets[i]);
+            const Mat3& r = rotations[t];
+            const Mat3 sigma =
+                corotated_stress(r, tet_field_gradient(grads[t], corners(v, t)), lame[t][0], lame[t][1], -1.0);
+            const Mat34 fc = (stiffness_scale * volumes[t]) * (r * sigma) * grads[t];
+            for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+          }
+        },
+        256);
+    gather(out);
+    for (std::size_t n = 0; n < node_count; ++n) {
+      const auto i = 3 * static_cast<Eigen::Index>(n);
+      if (fixed[n] != 0) {
+        out.segment<3>(i) = v.segment<3>(i);
+      } else {
+        out.segment<3>(i) += (mass_scale * mass[n]) * v.segment<3>(i);
+      }
+    }
+  }
+
+  /// Makes `p` hold mass_scale M + stiffness_scale K_rest (fixed dofs: identity), factorised or diagonal.
+  void prepare(Preconditioner& p, double mass_scale, double stiffness_scale) {
+    if (p.mass_scale == mass_scale && p.stiffness_scale == stiffness_scale) return;
+    if (settings.preconditioner == ElasticPreconditioner::rest_cholesky) {
+      pattern.assemble_block([&](std::size_t t, Mat12& ke) { ke = stiffness_scale * rest_stiffness(t); }, system);
+    } else {
+      system.coeffs().setZero();
+      const auto& diag = pattern.diagonal_entries();
+      for (std::size_t t = 0; t < tets.size(); ++t) {
+        const Mat12 k = rest_stiffness(t);
+        for (int a = 0; a < 4; ++a)
+          for (int c = 0; c < 3; ++c)
+            system.valuePtr()[diag[static_cast<std::size_t>(3 * tets[t][a] + c)]] +=
+                stiffness_scale * k(3 * a + c, 3 * a + c);
+      }
+    }
     const auto& diag = pattern.diagonal_entries();
     double* values = system.valuePtr();
     for (std::size_t d = 0; d < diag.size(); ++d) values[diag[d]] += mass_scale * mass[d / 3];
     for (std::ptrdiff_t k : masked_entries) values[k] = 0.0;
     for (std::ptrdiff_t k : fixed_diagonals) values[k] = 1.0;
+    if (settings.preconditioner == ElasticPreconditioner::rest_cholesky) {
+      if (!p.factor) {
+        p.factor = make_sparse_solver(SparseSolverKind::cholmod);
+        p.factor->analyse(system);
+      }
+      p.factor->factor(system);
+    } else {
+      p.inverse_diagonal.resize(static_cast<Eigen::Index>(diag.size()));
+      for (std::size_t d = 0; d < diag.size(); ++d)
+        p.inverse_diagonal[static_cast<Eigen::Index>(d)] = 1.0 / values[diag[d]];
+    }
+    p.mass_scale = mass_scale;
+    p.stiffness_scale = stiffness_scale;
+  }
+
+  /// out = Q P^-1 Q^T r blockwise, Q the overall rotation.
+  void apply_preconditioner(const Preconditioner& p, const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
+    Eigen::VectorXd local(r.size());
+    for (std::size_t n = 0; n < node_count; ++n) {
+      const auto i = 3 * static_cast<Eigen::Index>(n);
+      local.segment<3>(i) = overall_rotation.transpose() * r.segment<3>(i);
+    }
+    if (p.factor) {
+      p.factor->solve(local, out);
+    } else {
+      out = p.inverse_diagonal.cwiseProduct(local);
+    }
+    for (std::size_t n = 0; n < node_count; ++n) {
+      const auto i = 3 * static_cast<Eigen::Index>(n);
+      out.segment<3>(i) = overall_rotation * out.segment<3>(i).eval();
+    }
+  }
+
+  /// Q: polar rotation of sum_n m_n (x_n - c)(X_n - C)^T (c, C the centres of mass now and at rest).
+  void update_overall_rotation(const Eigen::VectorXd& x) {
+    Vec3 c = Vec3::Zero(), c0 = Vec3::Zero();
+    double total = 0.0;
+    for (std::size_t n = 0; n < node_count; ++n) {
+      if (is_loose[n] != 0) continue;
+      c += mass[n] * x.segment<3>(3 * static_cast<Eigen::Index>(n));
+      c0 += mass[n] * rest[n];
+      total += mass[n];
+    }
+    if (!(total > 0.0)) return;
+    c /= total;
+    c0 /= total;
+    Mat3 covariance = Mat3::Zero();
+    for (std::size_t n = 0; n < node_count; ++n)
+      if (is_loose[n] == 0)
+        covariance += mass[n] * (x.segment<3>(3 * static_cast<Eigen::Index>(n)) - c) * (rest[n] - c0).transpose();
+    overall_rotation =
+        covariance.allFinite() && covariance.norm() > 0.0 ? polar_rotation(covariance) : Mat3::Identity();
   }
 
   void update_fixed() {
@@ -174,6 +298,32 @@ struct CorotationalSolver::Impl {
         }
       }
     }
+    live_tets.clear();
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      bool free_node = false;
+      for (Index n : tets[t]) free_node = free_node || fixed[static_cast<std::size_t>(n)] == 0;
+      if (free_node) live_tets.push_back(static_cast<Index>(t));
+    }
+    node_start.assign(node_count + 1, 0);
+    for (Index t : live_tets)
+      for (Index n : tets[static_cast<std::size_t>(t)]) ++node_start[static_cast<std::size_t>(n) + 1];
+    for (std::size_t n = 0; n < node_count; ++n) node_start[n + 1] += node_start[n];
+    node_corners.assign(static_cast<std::size_t>(node_start[node_count]), 0);
+    std::vector<int> fill(node_start.begin(), node_start.end() - 1);
+    for (Index t : live_tets) {
+      for (int a = 0; a < 4; ++a) {
+        const auto n = static_cast<std::size_t>(tets[static_cast<std::size_t>(t)][a]);
+        node_corners[static_cast<std::size_t>(fill[n]++)] = 4 * t + a;
+      }
+    }
+    // The preconditioners hold the fixed dofs as identity rows: rebuild them on next use.
+    static_preconditioner.mass_scale = dynamic_preconditioner.mass_scale = -1.0;
+  }
+
+  Eigen::VectorXd flatten(const std::vector<Vec3>& x) const {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(3 * x.size()));
+    for (std::size_t n = 0; n < x.size(); ++n) v.segment<3>(3 * static_cast<Eigen::Index>(n)) = x[n];
+    return v;
   }
 
   void zero_fixed(Eigen::VectorXd& v) const {
@@ -219,28 +369,28 @@ CorotationalSolver::CorotationalSolver(const TetMesh& rest_mesh, const ElasticMa
     require_input(std::isfinite(materials.tet_density_kg_per_m3[t]) && materials.tet_density_kg_per_m3[t] > 0.0, source,
                   where, "density must be > 0");
   }
-  s.rest_corners.resize(nt);
-  s.rest_edge_inverse.resize(nt);
   s.grads.resize(nt);
   s.volumes.resize(nt);
-  s.elasticity.resize(nt);
+  s.lame.resize(nt);
   parallel_for(0, nt, [&](std::size_t t) {
-    const TetCorners p = s.corners(s.rest, t);
-    s.rest_corners[t] = stack_corners(p);
-    s.rest_edge_inverse[t] = tet_rest_edge_inverse(p);
+    const Tet& tet = s.tets[t];
+    const TetCorners p{s.rest[static_cast<std::size_t>(tet[0])], s.rest[static_cast<std::size_t>(tet[1])],
+                       s.rest[static_cast<std::size_t>(tet[2])], s.rest[static_cast<std::size_t>(tet[3])]};
     s.grads[t] = tet_shape_gradients(p, &s.volumes[t]);
     double e = materials.tet_youngs_modulus_pa[t] * kpa_per_pa;
     if (s.rigid[t] != 0 && settings.rigid_mode == RigidMode::stiff) e *= settings.rigid_stiffness_factor;
-    s.elasticity[t] = isotropic_elasticity(e, materials.tet_poisson_ratio[t]);
+    s.lame[t] = lame_parameters(e, materials.tet_poisson_ratio[t]);
   });
   for (std::size_t t = 0; t < nt; ++t) {
     require_input(s.volumes[t] > 0.0, source, "tet " + std::to_string(t), "is inverted (negative volume)");
   }
-  // Quasi-static regularisation scale from the softest element (stiff bone must not set it).
+  // Quasi-static regularisation scale from the softest element (stiff bone must not set it). For isotropic C,
+  // trace(V B^T C B) = V (lambda + 4 mu) sum_a |grad N_a|^2.
   s.softest_ratio = std::numeric_limits<double>::infinity();
   for (std::size_t t = 0; t < nt; ++t) {
     const double element_mass = materials.tet_density_kg_per_m3[t] * kg_per_mm3_per_kg_per_m3 * s.volumes[t];
-    s.softest_ratio = std::min(s.softest_ratio, s.stiffness(t).trace() / (3.0 * element_mass));
+    const double trace = s.volumes[t] * (s.lame[t][0] + 4.0 * s.lame[t][1]) * s.grads[t].squaredNorm();
+    s.softest_ratio = std::min(s.softest_ratio, trace / (3.0 * element_mass));
   }
   s.mass.assign(s.node_count, 0.0);
   for (std::size_t t = 0; t < nt; ++t) {
@@ -249,14 +399,17 @@ CorotationalSolver::CorotationalSolver(const TetMesh& rest_mesh, const ElasticMa
   }
   // Nodes in no tet have no mass and no stiffness: they are held in place (and given a unit mass so that
   // no zero ever reaches a diagonal).
+  s.is_loose.assign(s.node_count, 0);
   for (std::size_t n = 0; n < s.node_count; ++n) {
     if (s.mass[n] == 0.0) {
       s.mass[n] = 1.0;
       s.loose.push_back(static_cast<Index>(n));
+      s.is_loose[n] = 1;
     }
   }
   s.shrinkage.assign(nt, 0.0);
   s.external.assign(s.node_count, Vec3::Zero());
+  s.corner_buffer.assign(4 * nt, Vec3::Zero());
   s.pattern = SparsityPattern(s.tets, s.node_count, 3);
   s.system = s.pattern.make_matrix();
   s.update_fixed();
@@ -283,8 +436,8 @@ void CorotationalSolver::set_tet_shrinkage_strain(const std::vector<double>& str
   require_input(strain.size() == m_impl->tets.size(), source, "shrinkage strain",
                 "wrong size " + std::to_string(strain.size()));
   for (std::size_t t = 0; t < strain.size(); ++t) {
-    require_input(std::isfinite(strain[t]) && strain[t] > -1.0, source, "tet " + std::to_string(t),
-                  "shrinkage strain must be finite and > -1");
+    if (!(std::isfinite(strain[t]) && strain[t] > -1.0))
+      throw InputError(source, "tet " + std::to_string(t), "shrinkage strain must be finite and > -1");
   }
   m_impl->shrinkage = strain;
 }
@@ -304,20 +457,31 @@ void CorotationalSolver::step(ElasticState& state, double dt_s) {
   s.check_state(state);
   require_input(std::isfinite(dt_s) && dt_s > 0.0, source, "dt", "time step must be > 0");
   if (state.velocities.size() != s.node_count) state.velocities.assign(s.node_count, Vec3::Zero());
-  s.update_rotations(state.positions);
-  const double alpha = s.settings.rayleigh_alpha;
-  const double beta = s.settings.rayleigh_beta;
-  s.assemble(1.0 + dt_s * alpha, dt_s * beta + dt_s * dt_s);
-  SparseSpdSolver& solver = s.get_solver(s.dynamic_solver, s.settings.solver);
-  solver.factor(s.system);
-  Eigen::VectorXd rhs = dt_s * s.forces(state.positions);
-  Eigen::VectorXd v(static_cast<Eigen::Index>(3 * s.node_count));
-  for (std::size_t n = 0; n < s.node_count; ++n) {
+  const Eigen::VectorXd x = s.flatten(state.positions);
+  Eigen::VectorXd force;
+  s.evaluate(x, force);
+  s.update_overall_rotation(x);
+  const double mass_scale = 1.0 + dt_s * s.settings.rayleigh_alpha;
+  const double stiffness_scale = dt_s * s.settings.rayleigh_beta + dt_s * dt_s;
+  s.prepare(s.dynamic_preconditioner, mass_scale, stiffness_scale);
+  Eigen::VectorXd v = s.flatten(state.velocities);
+  Eigen::VectorXd rhs = dt_s * force;
+  for (std::size_t n = 0; n < s.node_count; ++n)
     rhs.segment<3>(static_cast<Eigen::Index>(3 * n)) += s.mass[n] * state.velocities[n];
-    v.segment<3>(static_cast<Eigen::Index>(3 * n)) = state.velocities[n];
-  }
   s.zero_fixed(rhs);
-  solver.solve(rhs, v);
+  s.zero_fixed(v);
+  const double limit = s.settings.cg_tolerance * std::sqrt(parallel_dot(rhs, rhs));
+  const PcgResult result = preconditioned_cg(
+      [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { s.apply_warped(mass_scale, stiffness_scale, in, out); },
+      [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+        s.apply_preconditioner(s.dynamic_preconditioner, in, out);
+      },
+      rhs, v, [&](const Eigen::VectorXd& r, int) { return std::sqrt(parallel_dot(r, r)) <= limit; },
+      s.settings.cg_max_iterations);
+  s.cg_iterations = result.iterations;
+  if (!result.converged)
+    throw NumericError("corotational step: CG did not converge in " + std::to_string(result.iterations) +
+                       " iterations");
   for (std::size_t n = 0; n < s.node_count; ++n) {
     state.velocities[n] = v.segment<3>(static_cast<Eigen::Index>(3 * n));
     state.positions[n] += dt_s * state.velocities[n];
@@ -328,55 +492,66 @@ int CorotationalSolver::solve_quasi_static(ElasticState& state) {
   Impl& s = *m_impl;
   s.check_state(state);
   state.velocities.assign(s.node_count, Vec3::Zero());
-  double eps = -1.0;
+  const double eps = s.settings.quasi_static_regularisation * s.softest_ratio;
+  s.prepare(s.static_preconditioner, eps, 1.0);
+  Eigen::VectorXd x = s.flatten(state.positions);
+  s.update_overall_rotation(x);
+  Eigen::VectorXd force, trial_force, trial(x.size());
+  double energy = s.evaluate(x, force);  // s.rotations are those at x from here on
+  s.cg_iterations = 0;
   int iteration = 0;
   while (iteration < s.settings.quasi_static_max_iterations) {
     ++iteration;
-    s.update_rotations(state.positions);
-    if (eps < 0.0) eps = s.settings.quasi_static_regularisation * s.softest_ratio;
-    s.assemble(eps, 1.0);
-    SparseSpdSolver& solver = s.get_solver(s.static_solver, s.settings.quasi_static_solver);
-    solver.factor(s.system);
-    Eigen::VectorXd rhs = s.forces(state.positions);
-    s.zero_fixed(rhs);
-    Eigen::VectorXd dx = Eigen::VectorXd::Zero(rhs.size());
-    solver.solve(rhs, dx);
+    // Inexact Newton step with the warped stiffness at x.
+    Eigen::VectorXd dx = Eigen::VectorXd::Zero(x.size());
+    const double limit = s.settings.newton_forcing * std::sqrt(parallel_dot(force, force));
+    const PcgResult inner = preconditioned_cg(
+        [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { s.apply_warped(eps, 1.0, in, out); },
+        [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+          s.apply_preconditioner(s.static_preconditioner, in, out);
+        },
+        force, dx, [&](const Eigen::VectorXd& r, int) { return std::sqrt(parallel_dot(r, r)) <= limit; },
+        s.settings.cg_max_iterations);
+    s.cg_iterations += inner.iterations;
     // Backtracking on the potential energy: the warped stiffness is not the exact tangent (it lacks the
     // derivative of R), so full steps can overshoot where shrinkage pre-stresses stiff and soft tets
-    // against each other. dx is a descent direction (K' + eps M is SPD), so halving always helps.
-    const double start_energy = s.potential(state.positions);
-    const double slope = rhs.dot(dx);  // -dPi/dalpha at alpha = 0
-    std::vector<Vec3> trial(s.node_count);
-    double alpha = 1.0;
+    // against each other. dx is a descent direction (CG on an SPD system from 0), so halving always helps.
+    const double slope = parallel_dot(force, dx);  // -dPi/dalpha at alpha = 0
+    double alpha = 1.0, trial_energy = energy;
     for (int halving = 0; halving < 30; ++halving) {
-      for (std::size_t n = 0; n < s.node_count; ++n) {
-        trial[n] = state.positions[n] + alpha * dx.segment<3>(static_cast<Eigen::Index>(3 * n));
-      }
-      const double energy = s.potential(trial);
-      if (energy <= start_energy - 1e-4 * alpha * slope + 1e-13 * std::abs(start_energy)) break;
+      trial = x + alpha * dx;
+      trial_energy = s.evaluate(trial, trial_force);
+      if (trial_energy <= energy - 1e-4 * alpha * slope + 1e-13 * std::abs(energy)) break;
       alpha *= 0.5;
     }
-    double largest = 0.0;
-    for (std::size_t n = 0; n < s.node_count; ++n) {
-      largest = std::max(largest, (trial[n] - state.positions[n]).cwiseAbs().maxCoeff());
-      state.positions[n] = trial[n];
-    }
-    if (!std::isfinite(largest)) throw NumericError("corotational quasi-static solve diverged");
+    const double largest = alpha * dx.cwiseAbs().maxCoeff();
+    x.swap(trial);
+    force.swap(trial_force);  // the last evaluate() was at the accepted trial: s.rotations are at x
+    energy = trial_energy;
+    if (!std::isfinite(largest) || !std::isfinite(energy))
+      throw NumericError("corotational quasi-static solve diverged");
     if (largest <= s.settings.quasi_static_tolerance_mm) break;
   }
+  for (std::size_t n = 0; n < s.node_count; ++n) state.positions[n] = x.segment<3>(3 * static_cast<Eigen::Index>(n));
   return iteration;
+}
+
+int CorotationalSolver::last_cg_iterations() const {
+  return m_impl->cg_iterations;
 }
 
 std::vector<Vec3> CorotationalSolver::elastic_forces(const std::vector<Vec3>& positions_mm) const {
   require_input(positions_mm.size() == m_impl->node_count, source, "positions",
                 "wrong size " + std::to_string(positions_mm.size()));
   const Impl& s = *m_impl;
+  const Eigen::VectorXd x = s.flatten(positions_mm);
   std::vector<Vec3> out(s.node_count, Vec3::Zero());
   for (std::size_t t = 0; t < s.tets.size(); ++t) {
-    const TetCorners p = s.corners(positions_mm, t);
-    const Mat3 r = rotation_from_deformation(tet_deformation_gradient(p, s.rest_edge_inverse[t]));
-    const Vec12 fe = tet_corotational_force(s.stiffness(t), r, stack_corners(p), s.rest_corners[t], s.eigen_force(t));
-    for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(s.tets[t][a])] += fe.segment<3>(3 * a);
+    const Mat3 f = tet_field_gradient(s.grads[t], s.corners(x, t));
+    const Mat3 r = polar_rotation(f);
+    const Mat3 sigma = corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t));
+    const Mat34 fc = -s.volumes[t] * (r * sigma) * s.grads[t];
+    for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(s.tets[t][a])] += fc.col(a);
   }
   for (Vec3& f : out) f /= internal_force_per_n;
   return out;
@@ -386,11 +561,16 @@ double CorotationalSolver::elastic_energy(const std::vector<Vec3>& positions_mm)
   const Impl& s = *m_impl;
   require_input(positions_mm.size() == s.node_count, source, "positions",
                 "wrong size " + std::to_string(positions_mm.size()));
+  const Eigen::VectorXd x = s.flatten(positions_mm);
   double energy = 0.0;
   for (std::size_t t = 0; t < s.tets.size(); ++t) {
-    const double strain = s.rigid[t] != 0 ? 0.0 : s.shrinkage[t];
-    energy += tet_corotational_energy(s.corners(positions_mm, t), s.rest_edge_inverse[t], s.volumes[t], s.elasticity[t],
-                                      strain);
+    const Mat3 f = tet_field_gradient(s.grads[t], s.corners(x, t));
+    const Mat3 r = polar_rotation(f);
+    const Mat3 rf = r.transpose() * f;
+    Mat3 e = 0.5 * (rf + rf.transpose());
+    e.diagonal().array() -= 1.0 + s.strain_of(t);
+    energy +=
+        0.5 * s.volumes[t] * e.cwiseProduct(corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t))).sum();
   }
   return energy / internal_force_per_n;  // internal energy unit kg mm^2/s^2 = mN mm
 }

@@ -16,9 +16,19 @@
 /// Dynamics (eq. 24/31): M a + D v + f_el(x) = f_ext, lumped M, Rayleigh D = alpha M + beta K', one linearised
 /// implicit Euler step per call (rotations re-extracted at the start of each step):
 ///   ((1 + dt alpha) M + (dt beta + dt^2) K') v1 = M v0 + dt (f_el(x0) + f_ext),   x1 = x0 + dt v1.
-/// Quasi-static (long steps): repeated x += a (K' + eps M)^-1 (f_el(x) + f_ext) with rotations re-extracted
-/// each time and a backtracking on the potential energy (a <= 1); the small eps M (a proximal term) makes a
-/// free body's system definite without moving the converged solution (at convergence the force vanishes).
+/// Quasi-static (long steps): inexact Newton iterations x += a dx with (K' + eps M) dx = f_el(x) + f_ext
+/// solved to a relative residual newton_forcing, rotations re-extracted each time and a backtracking on the
+/// potential energy (a <= 1); the small eps M (a proximal term) makes a free body's system definite without
+/// moving the converged solution (at convergence the force vanishes). A solve starts from the given shape:
+/// in a run, the previous step's, so only the change of shrinkage is left to solve.
+///
+/// Linear solves: preconditioned CG (fem/pcg.hpp) on the warped system, applied matrix-free (per tet
+/// R V B^T C B R^T, never assembled: the rotations change every iteration), preconditioned by one CHOLMOD
+/// factorisation of the rest stiffness per solver (and per dt for dynamic steps), rotated by the body's
+/// overall rotation (the polar rotation of the mass-weighted covariance of the current and rest positions)
+/// so that a moved or turned body is preconditioned as well as one at rest. Drying bodies rotate little
+/// locally, so CG needs a few iterations; the factorisation depends on the model only (never on the
+/// history of a run), so a run resumed from a checkpoint repeats the same arithmetic bit for bit.
 ///
 /// Bone ("rigid" tets) does not shrink. RigidMode::fixed holds every node of a rigid tet in place (an
 /// anchored skeleton: exact, the simplest acceptable model); RigidMode::stiff multiplies the Young's
@@ -65,6 +75,12 @@ enum class RigidMode {
   stiff,  ///< rigid tets keep their material with E * rigid_stiffness_factor
 };
 
+/// Preconditioner of the CG solves.
+enum class ElasticPreconditioner {
+  rest_cholesky,  ///< CHOLMOD factor of the rest stiffness (see above)
+  jacobi,         ///< its diagonal: no factorisation, for meshes whose factor does not fit in memory
+};
+
 struct CorotationalSettings {
   double rayleigh_alpha = 0.0;  ///< alpha of D = alpha M + beta K, 1/s
   double rayleigh_beta = 0.0;   ///< beta, s
@@ -73,12 +89,13 @@ struct CorotationalSettings {
   int quasi_static_max_iterations = 20;
   double quasi_static_tolerance_mm = 1e-9;    ///< stop when no node moves more than this
   double quasi_static_regularisation = 1e-6;  ///< eps relative to the softest tet's trace(K_e) / trace(M_e)
-  /// Backend of the dynamic step. Measured on a 30k-node box (bench_fem, BM_CorotationalStep): warm-started
-  /// Jacobi CG 2.5 s per step vs CHOLMOD refactorisation 9.0 s (the rotations change the matrix each step).
-  SparseSolverKind solver = SparseSolverKind::cg_jacobi;
-  /// Backend of the quasi-static solve: K' + eps M is badly conditioned (free bodies), so a direct solver.
-  SparseSolverKind quasi_static_solver = SparseSolverKind::cholmod;
-  double cg_tolerance = 1e-10;
+  /// Relative residual of each linearised quasi-static solve (inexact Newton, Eisenstat and Walker 1996):
+  /// the warped stiffness is not the exact tangent, so each Newton step cuts the error by a factor of about
+  /// the strain anyway and solving it more exactly buys nothing.
+  double newton_forcing = 0.05;
+  ElasticPreconditioner preconditioner = ElasticPreconditioner::rest_cholesky;
+  double cg_tolerance = 1e-10;  ///< dynamic step: relative residual of its CG solve
+  int cg_max_iterations = 2000;
 };
 
 /// Time-varying state: #V node positions (mm) and velocities (mm/s).
@@ -110,8 +127,10 @@ class CorotationalSolver {
   /// One implicit Euler step of dt_s seconds (eq. 31); updates positions and velocities in `state`.
   void step(ElasticState& state, double dt_s);
   /// Moves `state` to static equilibrium under the current shrinkage and external forces (velocities set
-  /// to zero). Returns the number of iterations used.
+  /// to zero), starting from its positions. Returns the number of (Newton) iterations used.
   int solve_quasi_static(ElasticState& state);
+  /// CG iterations of the last step() or solve_quasi_static() (summed over its Newton iterations).
+  int last_cg_iterations() const;
 
   /// Elastic node forces f_el(x) (N) at `positions`, #V.
   std::vector<Vec3> elastic_forces(const std::vector<Vec3>& positions_mm) const;

@@ -1,10 +1,12 @@
 #include "fem/diffusion_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "fem/pcg.hpp"
 #include "fem/tet_element.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/tet_boundary.hpp"
@@ -16,6 +18,12 @@ namespace {
 constexpr double mm2_per_m2 = 1e6;
 constexpr double mm_per_m = 1e3;
 const std::string source = "diffusion solver";
+
+Eigen::VectorXd multiplied(const SparseMatrix& a, const Eigen::VectorXd& x) {
+  Eigen::VectorXd y;
+  symmetric_multiply(a, x, y);
+  return y;
+}
 
 }  // namespace
 
@@ -34,6 +42,9 @@ std::vector<RobinFace> skin_robin_faces(const TetMesh& mesh, const std::vector<s
   }
   return faces;
 }
+
+/// The six edges of a tet as corner pairs, and the edge of a corner pair (a != b).
+constexpr std::array<std::array<int, 2>, 6> tet_edges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
 
 struct DiffusionSolver::Impl {
   DiffusionSettings settings;
@@ -58,25 +69,79 @@ struct DiffusionSolver::Impl {
   SparseMatrix mass_matrix;              // consistent M (when not lumped)
   Eigen::VectorXd lumped_mass;           // row sums of M (= 1^T M for either M)
   Eigen::VectorXd load;                  // f, per dof (without dt)
+  Eigen::VectorXd inverse_diagonal;      // Jacobi preconditioner of `system`
   std::vector<double> face_coefficient;  // cover h c per used face, mm/s * c
   std::vector<double> face_area;
-  std::vector<Mat34> grads;
   std::vector<double> volumes;
-  std::unique_ptr<SparseSpdSolver> solver;
+  /// Per element, the unit-coefficient stiffness of its six edges, V grad N_a . grad N_b (eq. 11 with
+  /// k = 1): the off-diagonal entries of K_e; the diagonal follows from zero row sums.
+  std::vector<std::array<double, 6>> edge_stiffness;
+  /// Reassembly as a gather (no colours, no atomics, parallel over matrix columns): for value index k,
+  /// entry_sources[entry_start[k] .. entry_start[k + 1]) are the element edges (6 e + edge) that contribute
+  /// to it, in element order (empty for diagonal entries). dof_elements likewise lists each dof's elements.
+  std::vector<int> entry_start, entry_sources;
+  std::vector<int> dof_start, dof_elements;
+  std::vector<double> element_coefficient;      // dt c D (mm^2) per element, scratch of assemble()
+  std::vector<double> element_capacity_volume;  // c V per element, scratch of assemble()
+  std::unique_ptr<SparseSpdSolver> solver;      // cholmod / cg_ic backends
 
   bool geometry_dirty = true;
   bool coefficients_dirty = true;
   double factored_dt = -1.0;
 
-  void update_geometry() {
-    grads.resize(elements.size());
-    volumes.resize(elements.size());
-    parallel_for(0, elements.size(), [&](std::size_t e) {
+  void build_gather_maps() {
+    const std::size_t nnz = pattern.nonzero_count();
+    const std::size_t ne = elements.size();
+    std::vector<std::array<std::ptrdiff_t, 12>> entries(ne);
+    parallel_for(0, ne, [&](std::size_t e) {
       const Tet& t = elements[e];
-      TetCorners p;
-      for (int i = 0; i < 4; ++i) p[i] = positions[static_cast<std::size_t>(dof_node[static_cast<std::size_t>(t[i])])];
-      grads[e] = tet_shape_gradients(p, &volumes[e]);
+      for (std::size_t j = 0; j < 6; ++j) {
+        const Index a = t[static_cast<std::size_t>(tet_edges[j][0])];
+        const Index b = t[static_cast<std::size_t>(tet_edges[j][1])];
+        entries[e][2 * j] = pattern.entry(a, b);
+        entries[e][2 * j + 1] = pattern.entry(b, a);
+      }
     });
+    entry_start.assign(nnz + 1, 0);
+    for (const auto& list : entries)
+      for (std::ptrdiff_t k : list) ++entry_start[static_cast<std::size_t>(k) + 1];
+    for (std::size_t k = 0; k < nnz; ++k) entry_start[k + 1] += entry_start[k];
+    entry_sources.assign(static_cast<std::size_t>(entry_start[nnz]), 0);
+    std::vector<int> fill(entry_start.begin(), entry_start.end() - 1);
+    for (std::size_t e = 0; e < ne; ++e) {
+      for (std::size_t i = 0; i < 12; ++i) {
+        const auto k = static_cast<std::size_t>(entries[e][i]);
+        entry_sources[static_cast<std::size_t>(fill[k]++)] = static_cast<int>(6 * e + i / 2);
+      }
+    }
+    const std::size_t dofs = dof_node.size();
+    dof_start.assign(dofs + 1, 0);
+    for (const Tet& t : elements)
+      for (Index d : t) ++dof_start[static_cast<std::size_t>(d) + 1];
+    for (std::size_t d = 0; d < dofs; ++d) dof_start[d + 1] += dof_start[d];
+    dof_elements.assign(static_cast<std::size_t>(dof_start[dofs]), 0);
+    fill.assign(dof_start.begin(), dof_start.end() - 1);
+    for (std::size_t e = 0; e < ne; ++e)
+      for (Index d : elements[e])
+        dof_elements[static_cast<std::size_t>(fill[static_cast<std::size_t>(d)]++)] = static_cast<int>(e);
+  }
+
+  void update_geometry() {
+    edge_stiffness.resize(elements.size());
+    volumes.resize(elements.size());
+    parallel_for(
+        0, elements.size(),
+        [&](std::size_t e) {
+          const Tet& t = elements[e];
+          TetCorners p;
+          for (int i = 0; i < 4; ++i)
+            p[static_cast<std::size_t>(i)] =
+                positions[static_cast<std::size_t>(dof_node[static_cast<std::size_t>(t[i])])];
+          const Mat34 g = tet_shape_gradients(p, &volumes[e]);
+          for (std::size_t j = 0; j < 6; ++j)
+            edge_stiffness[e][j] = volumes[e] * g.col(tet_edges[j][0]).dot(g.col(tet_edges[j][1]));
+        },
+        1024);
     face_area.resize(used_faces.size());
     for (std::size_t k = 0; k < used_faces.size(); ++k) {
       const Tri& v = faces[used_faces[k]].vertices;
@@ -88,32 +153,64 @@ struct DiffusionSolver::Impl {
 
   void assemble(double dt) {
     const std::size_t dofs = dof_node.size();
-    // Lumped mass (also 1^T M for the consistent mass): serial, in element order, for determinism.
-    lumped_mass.setZero(static_cast<Eigen::Index>(dofs));
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-      const double c = tet_capacity[static_cast<std::size_t>(active_tets[e])];
-      const Vec4 m = tet_lumped_mass(volumes[e], c);
-      for (int i = 0; i < 4; ++i) lumped_mass[elements[e][i]] += m[i];
-    }
+    const std::size_t ne = elements.size();
+    element_coefficient.resize(ne);
+    element_capacity_volume.resize(ne);
+    parallel_for_chunks(0, ne, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t e = lo; e < hi; ++e) {
+        const auto tet = static_cast<std::size_t>(active_tets[e]);
+        element_coefficient[e] = dt * tet_capacity[tet] * tet_diffusivity[tet] * mm2_per_m2;
+        element_capacity_volume[e] = tet_capacity[tet] * volumes[e];
+      }
+    });
     const bool lumped = settings.lumped_mass;
-    pattern.assemble_scalar(
-        [&](std::size_t e, Mat4& ke) {
-          const std::size_t tet = static_cast<std::size_t>(active_tets[e]);
-          const double c = tet_capacity[tet];
-          ke = tet_diffusion_stiffness(grads[e], volumes[e], dt * c * tet_diffusivity[tet] * mm2_per_m2);
-          if (!lumped) ke += tet_consistent_mass(volumes[e], c);
+    lumped_mass.resize(static_cast<Eigen::Index>(dofs));
+    const int* outer = system.outerIndexPtr();
+    const int* inner = system.innerIndexPtr();
+    double* values = system.valuePtr();
+    double* mass_values = lumped ? nullptr : mass_matrix.valuePtr();
+    // Column j (= row j): K off-diagonals gathered from the element edges, K_jj = -(their sum) (rows of K sum
+    // to zero exactly, so 1^T K u = 0 and the water balance has no assembly error), plus M.
+    parallel_for_chunks(
+        0, dofs,
+        [&](std::size_t lo, std::size_t hi) {
+          for (std::size_t j = lo; j < hi; ++j) {
+            double capacity_volume = 0.0;
+            for (int i = dof_start[j]; i < dof_start[j + 1]; ++i)
+              capacity_volume +=
+                  element_capacity_volume[static_cast<std::size_t>(dof_elements[static_cast<std::size_t>(i)])];
+            lumped_mass[static_cast<Eigen::Index>(j)] = capacity_volume / 4.0;  // tet_lumped_mass per corner
+            double off_sum = 0.0;
+            int diagonal = -1;
+            for (int k = outer[j]; k < outer[j + 1]; ++k) {
+              if (static_cast<std::size_t>(inner[k]) == j) {
+                diagonal = k;
+                continue;
+              }
+              double v = 0.0, m = 0.0;
+              for (int i = entry_start[static_cast<std::size_t>(k)]; i < entry_start[static_cast<std::size_t>(k) + 1];
+                   ++i) {
+                const auto src = static_cast<std::size_t>(entry_sources[static_cast<std::size_t>(i)]);
+                v += element_coefficient[src / 6] * edge_stiffness[src / 6][src % 6];
+                if (!lumped) m += element_capacity_volume[src / 6];
+              }
+              off_sum += v;
+              if (lumped) {
+                values[k] = v;
+              } else {
+                values[k] = v + m / 20.0;  // tet_consistent_mass off-diagonal c V / 20
+                mass_values[k] = m / 20.0;
+              }
+            }
+            if (lumped) {
+              values[diagonal] = lumped_mass[static_cast<Eigen::Index>(j)] - off_sum;
+            } else {
+              values[diagonal] = capacity_volume / 10.0 - off_sum;  // c V / 10 per element on the diagonal
+              mass_values[diagonal] = capacity_volume / 10.0;
+            }
+          }
         },
-        system);
-    if (lumped) {
-      const auto& diag = pattern.diagonal_entries();
-      for (std::size_t d = 0; d < dofs; ++d) system.valuePtr()[diag[d]] += lumped_mass[static_cast<Eigen::Index>(d)];
-    } else {
-      pattern.assemble_scalar(
-          [&](std::size_t e, Mat4& me) {
-            me = tet_consistent_mass(volumes[e], tet_capacity[static_cast<std::size_t>(active_tets[e])]);
-          },
-          mass_matrix);
-    }
+        512);
     load.setZero(static_cast<Eigen::Index>(dofs));
     face_coefficient.resize(used_faces.size());
     for (std::size_t k = 0; k < used_faces.size(); ++k) {
@@ -125,10 +222,56 @@ struct DiffusionSolver::Impl {
       const double off = coefficient * face_area[k] / 12.0;
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b)
-          system.valuePtr()[face_entries[k][static_cast<std::size_t>(3 * a + b)]] += dt * off * (a == b ? 2.0 : 1.0);
+          values[face_entries[k][static_cast<std::size_t>(3 * a + b)]] += dt * off * (a == b ? 2.0 : 1.0);
         load[face_dofs[k][static_cast<std::size_t>(a)]] += coefficient * f.ambient * face_area[k] / 3.0;
       }
     }
+    inverse_diagonal.resize(static_cast<Eigen::Index>(dofs));
+    const auto& diag = pattern.diagonal_entries();
+    parallel_for_chunks(0, dofs, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t d = lo; d < hi; ++d) inverse_diagonal[static_cast<Eigen::Index>(d)] = 1.0 / values[diag[d]];
+    });
+  }
+
+  /// Jacobi-preconditioned CG with the stopping tests of DiffusionSettings; returns the iterations.
+  int solve_jacobi_cg(const Eigen::VectorXd& rhs, const Eigen::VectorXd& old, Eigen::VectorXd& next) const {
+    const std::size_t n = static_cast<std::size_t>(rhs.size());
+    const double* r_inv = inverse_diagonal.data();
+    double scale = 0.0, rhs_size = 0.0;
+    for (Eigen::Index d = 0; d < old.size(); ++d) {
+      scale = std::max(scale, std::abs(old[d]));
+      rhs_size += std::abs(rhs[d]);
+    }
+    const double correction_limit = settings.tolerance * scale;
+    const double balance_limit = settings.balance_tolerance * rhs_size;
+    const LinearOperator a = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+      symmetric_multiply(system, in, out);
+    };
+    const LinearOperator jacobi = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+      out.resize(in.size());
+      parallel_for_chunks(0, n, [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i)
+          out[static_cast<Eigen::Index>(i)] = r_inv[i] * in[static_cast<Eigen::Index>(i)];
+      });
+    };
+    const PcgConverged converged = [&](const Eigen::VectorXd& r, int) {
+      const double* pr = r.data();
+      const double unbalanced = parallel_sum_chunks(0, n, [&](std::size_t lo, std::size_t hi) {
+        double s = 0.0;
+        for (std::size_t i = lo; i < hi; ++i) s += pr[i];
+        return s;
+      });
+      if (std::abs(unbalanced) > balance_limit) return false;
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::abs(pr[i]) * r_inv[i] > correction_limit) return false;
+      return true;
+    };
+    const PcgResult result = preconditioned_cg(a, jacobi, rhs, next, converged, settings.max_iterations);
+    if (!result.converged) {
+      throw NumericError("diffusion solver: CG did not converge in " + std::to_string(result.iterations) +
+                         " iterations");
+    }
+    return result.iterations;
   }
 };
 
@@ -199,8 +342,11 @@ DiffusionSolver::DiffusionSolver(const TetMesh& mesh, std::vector<std::uint8_t> 
     s.face_dofs.push_back(dofs);
     s.face_entries.push_back(entries);
   }
-  s.solver = make_sparse_solver(settings.solver, settings.cg_tolerance);
-  if (!s.dof_node.empty()) s.solver->analyse(s.system);
+  s.build_gather_maps();
+  if (settings.solver != SparseSolverKind::cg_jacobi) {
+    s.solver = make_sparse_solver(settings.solver, settings.cg_tolerance);
+    if (!s.dof_node.empty()) s.solver->analyse(s.system);
+  }
 }
 
 DiffusionSolver::~DiffusionSolver() = default;
@@ -211,8 +357,8 @@ void DiffusionSolver::set_tet_diffusivity(const std::vector<double>& m2_per_s) {
   require_input(m2_per_s.size() == m_impl->tet_diffusivity.size(), source, "tet diffusivity",
                 "wrong size " + std::to_string(m2_per_s.size()));
   for (std::size_t t = 0; t < m2_per_s.size(); ++t) {
-    require_input(m_impl->tet_active[t] == 0 || (std::isfinite(m2_per_s[t]) && m2_per_s[t] >= 0.0), source,
-                  "tet " + std::to_string(t), "diffusivity must be finite and >= 0");
+    if (m_impl->tet_active[t] != 0 && !(std::isfinite(m2_per_s[t]) && m2_per_s[t] >= 0.0))
+      throw InputError(source, "tet " + std::to_string(t), "diffusivity must be finite and >= 0");
   }
   m_impl->tet_diffusivity = m2_per_s;
   m_impl->coefficients_dirty = true;
@@ -222,8 +368,8 @@ void DiffusionSolver::set_tet_capacity(const std::vector<double>& capacity) {
   require_input(capacity.size() == m_impl->tet_capacity.size(), source, "tet capacity",
                 "wrong size " + std::to_string(capacity.size()));
   for (std::size_t t = 0; t < capacity.size(); ++t) {
-    require_input(m_impl->tet_active[t] == 0 || (std::isfinite(capacity[t]) && capacity[t] > 0.0), source,
-                  "tet " + std::to_string(t), "capacity must be finite and > 0");
+    if (m_impl->tet_active[t] != 0 && !(std::isfinite(capacity[t]) && capacity[t] > 0.0))
+      throw InputError(source, "tet " + std::to_string(t), "capacity must be finite and > 0");
   }
   m_impl->tet_capacity = capacity;
   m_impl->coefficients_dirty = true;
@@ -250,6 +396,7 @@ void DiffusionSolver::set_face_ambient(const std::vector<double>& ambient) {
 void DiffusionSolver::set_positions(const std::vector<Vec3>& positions_mm) {
   require_input(positions_mm.size() == m_impl->node_count, source, "positions",
                 "wrong size " + std::to_string(positions_mm.size()));
+  if (positions_mm == m_impl->positions) return;  // unchanged (the shape is solved every few steps)
   m_impl->positions = positions_mm;
   m_impl->geometry_dirty = true;
 }
@@ -266,7 +413,7 @@ DiffusionStepReport DiffusionSolver::step(std::vector<double>& values, double dt
   }
   if (s.coefficients_dirty || dt_s != s.factored_dt) {
     s.assemble(dt_s);
-    s.solver->factor(s.system);
+    if (s.solver) s.solver->factor(s.system);
     s.factored_dt = dt_s;
     s.coefficients_dirty = false;
     report.refactored = true;
@@ -276,14 +423,19 @@ DiffusionStepReport DiffusionSolver::step(std::vector<double>& values, double dt
   for (std::size_t d = 0; d < dofs; ++d)
     old[static_cast<Eigen::Index>(d)] = values[static_cast<std::size_t>(s.dof_node[d])];
   Eigen::VectorXd rhs =
-      s.settings.lumped_mass ? Eigen::VectorXd(s.lumped_mass.cwiseProduct(old)) : Eigen::VectorXd(s.mass_matrix * old);
+      s.settings.lumped_mass ? Eigen::VectorXd(s.lumped_mass.cwiseProduct(old)) : multiplied(s.mass_matrix, old);
   rhs += dt_s * s.load;
   Eigen::VectorXd next = old;  // warm start for CG
-  s.solver->solve(rhs, next);
-  report.iterations = s.solver->last_iterations();
+  if (s.solver) {
+    s.solver->solve(rhs, next);
+    report.iterations = s.solver->last_iterations();
+  } else {
+    report.iterations = s.solve_jacobi_cg(rhs, old, next);
+  }
   for (std::size_t d = 0; d < dofs; ++d)
     values[static_cast<std::size_t>(s.dof_node[d])] = next[static_cast<Eigen::Index>(d)];
-  report.storage_change = s.lumped_mass.dot(next - old);
+  const Eigen::VectorXd change = next - old;
+  report.storage_change = parallel_dot(s.lumped_mass, change);
   double outflow = 0.0;
   for (std::size_t k = 0; k < s.used_faces.size(); ++k) {
     const auto& d = s.face_dofs[k];

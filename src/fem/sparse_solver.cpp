@@ -6,8 +6,10 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
+#include <cmath>
 
 #include "core/error.hpp"
+#include "fem/pcg.hpp"
 
 namespace forensim {
 
@@ -90,6 +92,48 @@ class CgSolver final : public SparseSpdSolver {
   int m_iterations = 0;
 };
 
+/// Jacobi-preconditioned CG on forensim's parallel, deterministic PCG (fem/pcg.hpp).
+class JacobiCgSolver final : public SparseSpdSolver {
+ public:
+  JacobiCgSolver(double tolerance, int max_iterations) : m_tolerance(tolerance), m_max_iterations(max_iterations) {}
+  void analyse(const SparseMatrix& pattern) override { m_matrix = pattern; }
+  void factor(const SparseMatrix& matrix) override {
+    m_matrix = matrix;
+    m_inverse_diagonal = m_matrix.diagonal();
+    for (Eigen::Index i = 0; i < m_inverse_diagonal.size(); ++i) {
+      if (!(m_inverse_diagonal[i] > 0.0)) throw NumericError("CG: matrix has a non-positive diagonal entry");
+      m_inverse_diagonal[i] = 1.0 / m_inverse_diagonal[i];
+    }
+  }
+  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override {
+    if (x.size() != rhs.size()) x = Eigen::VectorXd::Zero(rhs.size());
+    const double limit = m_tolerance * std::sqrt(parallel_dot(rhs, rhs));
+    double last = 0.0;
+    const PcgResult result = preconditioned_cg(
+        [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { symmetric_multiply(m_matrix, in, out); },
+        [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m_inverse_diagonal.cwiseProduct(in); }, rhs, x,
+        [&](const Eigen::VectorXd& r, int) {
+          last = std::sqrt(parallel_dot(r, r));
+          return last <= limit;
+        },
+        m_max_iterations);
+    m_iterations = result.iterations;
+    if (!result.converged) {
+      throw NumericError("CG: no convergence in " + std::to_string(m_iterations) + " iterations (residual " +
+                         std::to_string(last) + ", wanted " + std::to_string(limit) + ")");
+    }
+  }
+  int last_iterations() const override { return m_iterations; }
+  SparseSolverKind kind() const override { return SparseSolverKind::cg_jacobi; }
+
+ private:
+  double m_tolerance;
+  int m_max_iterations;
+  SparseMatrix m_matrix;
+  Eigen::VectorXd m_inverse_diagonal;
+  int m_iterations = 0;
+};
+
 }  // namespace
 
 std::unique_ptr<SparseSpdSolver> make_sparse_solver(SparseSolverKind kind, double relative_tolerance,
@@ -101,8 +145,7 @@ std::unique_ptr<SparseSpdSolver> make_sparse_solver(SparseSolverKind kind, doubl
       return std::make_unique<CgSolver<Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>>>(
           kind, relative_tolerance, max_iterations);
     case SparseSolverKind::cg_jacobi:
-      return std::make_unique<CgSolver<Eigen::DiagonalPreconditioner<double>>>(kind, relative_tolerance,
-                                                                               max_iterations);
+      return std::make_unique<JacobiCgSolver>(relative_tolerance, max_iterations);
   }
   throw NumericError("make_sparse_solver: unknown solver kind");
 }

@@ -118,6 +118,28 @@ Mat3 rotation_from_deformation(const Mat3& deformation_gradient) {
   return u * v.transpose();
 }
 
+Mat3 polar_rotation(const Mat3& deformation_gradient) {
+  Mat3 x = deformation_gradient;
+  bool scaled = true;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    // X^-T = cofactor(X) / det X.
+    Mat3 cofactor;
+    cofactor.col(0) = x.col(1).cross(x.col(2));
+    cofactor.col(1) = x.col(2).cross(x.col(0));
+    cofactor.col(2) = x.col(0).cross(x.col(1));
+    const double det = x.col(0).dot(cofactor.col(0));
+    if (!(det > 0.0) || !std::isfinite(det)) break;  // inverted or degenerate: the SVD decides
+    double zeta = 1.0;
+    if (scaled) zeta = std::sqrt(std::sqrt(cofactor.squaredNorm() / (det * det * x.squaredNorm())));
+    const Mat3 next = 0.5 * (zeta * x + cofactor / (zeta * det));
+    const double change = (next - x).cwiseAbs().maxCoeff();
+    x = next;
+    if (change < 1e-8) return x;
+    scaled = change > 1e-2;  // near convergence scaling only perturbs the quadratic rate
+  }
+  return rotation_from_deformation(deformation_gradient);
+}
+
 Vec12 rotate_blocks(const Mat3& r, const Vec12& v) {
   Vec12 out;
   for (int i = 0; i < 4; ++i) out.segment<3>(3 * i) = r * v.segment<3>(3 * i);

@@ -70,6 +70,35 @@ Mat3 tet_deformation_gradient(const TetCorners& x, const Mat3& rest_edge_inverse
 /// is flipped so that R stays a proper rotation (det R = +1).
 Mat3 rotation_from_deformation(const Mat3& deformation_gradient);
 
+/// The same rotation by Higham's Newton iteration (Higham 1986, "Computing the polar decomposition with
+/// applications"): X <- (zeta X + X^-T / zeta) / 2 from X = F, with the Frobenius-norm scaling
+/// zeta = (|X^-1|_F / |X|_F)^(1/2) while X is far from orthogonal. The error is squared each iteration
+/// (e_{k+1} ~ e_k^2 / 2), so it stops once a step changes X by less than 1e-8 (the next error ~1e-16):
+/// 2-4 iterations for the stretches of drying tissue, a fraction of the cost of an SVD. A function of F
+/// alone, with no warm start, so that results never depend on what was computed before (a run resumed from
+/// a checkpoint repeats the same arithmetic). Falls back to rotation_from_deformation for det F <= 0
+/// (inverted) and when the iteration does not settle.
+Mat3 polar_rotation(const Mat3& deformation_gradient);
+
+/// Gradient sum_i v_i grad N_i^T (3x3) of the linear field with corner values v (columns of `corners`, 3x4):
+/// the deformation gradient F for corner positions, grad u for corner displacements.
+inline Mat3 tet_field_gradient(const Mat34& grads, const Mat34& corners) {
+  return corners * grads.transpose();
+}
+
+/// Stress of the corotated linear model with isotropic eigenstrain s I, as a symmetric 3x3 tensor in the
+/// unrotated frame: sigma = lambda tr(e) I + 2 mu e, e = sym(R^T G) - (1 + s) I, G = F (eq. 30's
+/// C (eps - eps0) with C isotropic). With s = -1 and G a displacement gradient it is the linear stress of
+/// R^T G, the product of the warped stiffness. lambda, mu: Lame parameters (lame_parameters).
+inline Mat3 corotated_stress(const Mat3& r, const Mat3& g, double lambda, double mu, double s) {
+  const Mat3 rg = r.transpose() * g;
+  Mat3 e = 0.5 * (rg + rg.transpose());
+  e.diagonal().array() -= 1.0 + s;
+  Mat3 sigma = (2.0 * mu) * e;
+  sigma.diagonal().array() += lambda * e.trace();
+  return sigma;
+}
+
 /// Applies a 3x3 matrix to each of the four xyz blocks of a 12-vector.
 Vec12 rotate_blocks(const Mat3& r, const Vec12& v);
 

@@ -160,3 +160,59 @@ TEST(TetElement, CorotationalForceIsMinusEnergyGradient) {
     }
   }
 }
+
+TEST(TetElement, NewtonPolarRotationMatchesTheSvd) {
+  Mat3 s;
+  s << 1.2, 0.1, 0.0, 0.1, 0.9, 0.05, 0.0, 0.05, 1.1;
+  for (double angle : {0.0, 0.8, 3.1}) {
+    for (double scale : {1.0, 0.55, 1e-3, 40.0}) {
+      const Mat3 q = rotation(angle, Vec3(1, 2, 3));
+      const Mat3 f = scale * q * s;
+      const Mat3 r = polar_rotation(f);
+      EXPECT_LT((r - q).norm(), 1e-12) << angle << " " << scale;
+      EXPECT_LT((r - rotation_from_deformation(f)).norm(), 1e-12);
+    }
+  }
+  // Strongly sheared and inverted gradients: still a proper rotation, the SVD's where inverted.
+  Mat3 shear = Mat3::Identity();
+  shear(0, 1) = 4.0;
+  EXPECT_LT((polar_rotation(shear) - rotation_from_deformation(shear)).norm(), 1e-12);
+  Mat3 inverted = rotation(0.8, Vec3(1, 2, 3)) * s;
+  inverted.col(0) = -inverted.col(0);
+  EXPECT_NEAR(polar_rotation(inverted).determinant(), 1.0, 1e-12);
+  EXPECT_LT((polar_rotation(inverted) - rotation_from_deformation(inverted)).norm(), 1e-12);
+}
+
+TEST(TetElement, CorotatedStressGivesTheElementForceAndStiffness) {
+  // -V R sigma G (columns: corner forces) must equal tet_corotational_force, and V R sigma(R^T grad v) G the
+  // warped stiffness R K R^T applied to v.
+  const TetCorners rest = skewed_tet();
+  double volume = 0.0;
+  const Mat34 g = tet_shape_gradients(rest, &volume);
+  const double e = 2e4, nu = 0.35, s = -0.07;
+  const Vec2 lame = lame_parameters(e, nu);
+  const Mat6 c = isotropic_elasticity(e, nu);
+  const Mat12 k = tet_linear_stiffness(g, volume, e, nu);
+  Mat3 a;
+  a << 1.1, 0.15, -0.05, 0.02, 0.92, 0.1, -0.07, 0.04, 1.05;
+  const TetCorners x = apply(rest, rotation(0.9, Vec3(1, 1, 0)) * a, Vec3(0.5, 0, -1));
+  Mat34 xc, vc;
+  for (int i = 0; i < 4; ++i) {
+    xc.col(i) = x[i];
+    vc.col(i) = Vec3(std::sin(i + 1.0), std::cos(2.0 * i), 0.3 * i - 0.5);
+  }
+  const Mat3 f = tet_field_gradient(g, xc);
+  EXPECT_LT((f - tet_deformation_gradient(x, tet_rest_edge_inverse(rest))).norm(), 1e-12);
+  const Mat3 r = polar_rotation(f);
+  const Mat34 force = -volume * (r * corotated_stress(r, f, lame[0], lame[1], s)) * g;
+  const Vec12 expected =
+      tet_corotational_force(k, r, stack_corners(x), stack_corners(rest), tet_eigenstrain_force(g, volume, c, s));
+  const Mat34 product = volume * (r * corotated_stress(r, tet_field_gradient(g, vc), lame[0], lame[1], -1.0)) * g;
+  Vec12 v;
+  for (int i = 0; i < 4; ++i) v.segment<3>(3 * i) = vc.col(i);
+  const Vec12 expected_product = rotate_stiffness(r, k) * v;
+  for (int i = 0; i < 12; ++i) {
+    EXPECT_NEAR(force(i % 3, i / 3), expected[i], 1e-10 * expected.norm()) << i;
+    EXPECT_NEAR(product(i % 3, i / 3), expected_product[i], 1e-10 * expected_product.norm()) << i;
+  }
+}
