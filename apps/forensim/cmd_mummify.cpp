@@ -25,24 +25,19 @@
 #include "desiccation/desiccation_pictures.hpp"
 #include "desiccation/desiccation_sim.hpp"
 #include "image/png_io.hpp"
+#include "mummify_run.hpp"
 #include "mummify_skin.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
 
 namespace forensim::cli {
-namespace {
 
-struct MummifyArgs {
-  std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
-  double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
-  int frames = 6, picture_size = 480, map_size = 512;
-  std::vector<double> gravity;
-  double contact_mm = 3.0;
-  bool resume = false, no_pictures = false;
-  CLI::App* sub = nullptr;
-  bool given(const std::string& option) const { return sub->get_option(option)->count() > 0; }
-};
+bool MummifyArgs::given(const std::string& option) const {
+  return sub != nullptr && sub->get_option(option)->count() > 0;
+}
+
+namespace {
 
 /// A run's description: the job file (or defaults), with command-line options taking precedence.
 struct MummifyJob {
@@ -263,6 +258,8 @@ std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const Desiccat
   return rows;
 }
 
+}  // namespace
+
 int run_mummify(const MummifyArgs& a) {
   Stopwatch watch;
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
@@ -449,12 +446,10 @@ int run_mummify(const MummifyArgs& a) {
     cells.push_back({shrunk, std::string(caption) + ": shrunken over the original"});
     write_png(run.file("mummify_sheet.png"), make_sheet(cells, 2, "forensim mummify: " + kind));
     run.add_output("mummify_sheet.png");
-    write_png(run.file("skin_timeline.png"),
-              skin_timeline_sheet(skin.rest_skin(), skin_frames, views.axes, views.outside, settings,
-                                  "forensim mummify: " + kind + " skin over time"));
-    write_png(run.file("skin_turntable.png"),
-              skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8, settings,
-                                   "forensim mummify: " + kind + ", " + caption));
+    write_png(run.file("skin_timeline.png"), skin_timeline_sheet(skin.rest_skin(), skin_frames, views.axes,
+                                                                 views.outside, settings, kind + " skin drying"));
+    write_png(run.file("skin_turntable.png"), skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8,
+                                                                   settings, kind + ", " + caption));
     for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
     run.timings().add("pictures", picture_watch.seconds());
   }
@@ -462,6 +457,8 @@ int run_mummify(const MummifyArgs& a) {
   std::printf("wrote %s (%s)\n", run.path().string().c_str(), format_seconds(watch.seconds()).c_str());
   return 0;
 }
+
+namespace {
 
 const RegisterCommand mummify_command{
     "mummify", [](CLI::App& app) {
