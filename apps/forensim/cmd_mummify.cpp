@@ -1,8 +1,11 @@
-// forensim mummify: the volume part of the desiccation simulation (Frerichs, Vidler and Gatzidis 2020,
-// sections 6 and 7): moisture evaporating through the skin and diffusing in the flesh of a body model, and
-// the shrinkage of the volume it causes. Writes a .pvd/.vtu series, CSV curves, plots and renders into a run
-// folder; checkpoints at every frame so an interrupted run continues with --resume.
+// forensim mummify: the desiccation simulation (Frerichs, Vidler and Gatzidis 2020, sections 6 to 8):
+// moisture evaporating through the skin and diffusing in the flesh of a body model, the shrinkage of the
+// volume it causes, and the skin over it with its colour from the livor mortis start state to dried, dark
+// brown skin (section 8.3). Writes the animated skin (GLB), .pvd/.vtu series of the volume and the skin,
+// CSV curves, plots and renders into a run folder; checkpoints at every frame so an interrupted run
+// continues with --resume.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -12,6 +15,7 @@
 #include "body/phantom_model.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/job.hpp"
 #include "core/progress.hpp"
@@ -22,11 +26,14 @@
 #include "desiccation/desiccation_sim.hpp"
 #include "image/png_io.hpp"
 #include "mummify_job.hpp"
+#include "mummify_run.hpp"
+#include "mummify_skin.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
 
 namespace forensim::cli {
+
 namespace {
 
 /// One row of the curves: day, totals, per-part water/mass/volume.
@@ -171,6 +178,8 @@ std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const Desiccat
   return rows;
 }
 
+}  // namespace
+
 int run_mummify(const MummifyArgs& a) {
   Stopwatch watch;
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
@@ -192,6 +201,14 @@ int run_mummify(const MummifyArgs& a) {
   }
   run.timings().add("body model", watch.seconds());
   const DesiccationModel model = make_desiccation_model(std::move(body), job.settings);
+  Stopwatch skin_setup;
+  const MummifySkin skin(model.body, job.settings.tissue.initial_moisture, job.skin);
+  run.timings().add("skin setup", skin_setup.seconds());
+  std::printf("skin: %zu vertices, livor blood level %.1f mm above the lowest point (%zu in contact)%s\n",
+              model.body.skin.vertex_count(), skin.livor().blood_level_mm - skin.livor().height_min_mm,
+              static_cast<std::size_t>(
+                  std::count(skin.livor().vertex_contact.begin(), skin.livor().vertex_contact.end(), std::uint8_t{1})),
+              skin.has_maps() ? ", baking colour maps" : "");
   const DryingEnvironment& env = job.settings.environment;
   std::printf("environment: %.1f C, %.0f %% RH, wind %.1f m/s -> X_e %.3f kg/kg, h %.3g m/s (air side %.3g m/s)\n",
               env.air_temperature_c, 100.0 * env.relative_humidity, env.air_speed_m_per_s, model.equilibrium_moisture,
@@ -208,18 +225,30 @@ int run_mummify(const MummifyArgs& a) {
   const auto checkpoint = run.file("checkpoint.bin");
   DesiccationState state = initial_desiccation_state(model);
   std::vector<CurveRow> rows;
-  std::vector<PvdEntry> entries;
+  std::vector<PvdEntry> entries, skin_entries;
   if (a.resume && std::filesystem::exists(checkpoint)) {
     state = read_desiccation_checkpoint(checkpoint, model.body.volume.vertex_count());
     rows = read_rows(run.file("curves.csv"), model, state.time_s / 86400.0);
     for (const PvdEntry& e : read_pvd(run.file("desiccation.pvd")))
       if (e.time <= state.time_s / 86400.0 + 1e-9) entries.push_back(e);
+    if (std::filesystem::exists(run.file("skin.pvd")))
+      for (const PvdEntry& e : read_pvd(run.file("skin.pvd")))
+        if (e.time <= state.time_s / 86400.0 + 1e-9) skin_entries.push_back(e);
     std::printf("resuming at day %.2f (step %lld of %lld)\n", state.time_s / 86400.0, state.step_count, total_steps);
   }
   PvdSeries series(run.file("desiccation.pvd"), entries);
   run.add_output("desiccation.pvd");
+  PvdSeries skin_series(run.file("skin.pvd"), skin_entries);
+  run.add_output("skin.pvd");
+  double seconds_skin = 0.0;
+  auto write_frames = [&](int frame) {
+    write_frame(run, series, model, state, frame);
+    Stopwatch skin_watch;
+    skin_series.add(state.time_s / 86400.0, skin.write_frame(run.path(), skin.frame(state), frame));
+    seconds_skin += skin_watch.seconds();
+  };
   if (rows.empty()) rows.push_back({0.0, desiccation_totals(model, state)});
-  if (state.step_count == 0) write_frame(run, series, model, state, 0);
+  if (state.step_count == 0) write_frames(0);
 
   DesiccationSolver solver(model);
   Progress progress("drying", static_cast<std::size_t>(total_steps));
@@ -243,7 +272,7 @@ int run_mummify(const MummifyArgs& a) {
     progress.advance();
     const int frame = frame_of_step(state.step_count);
     if (frame > 0) {
-      write_frame(run, series, model, state, frame);
+      write_frames(frame);
       run.write("curves.csv", csv_text(rows, model.body.part_names));
       write_desiccation_checkpoint(checkpoint, state);
       run.write_record();
@@ -268,7 +297,37 @@ int run_mummify(const MummifyArgs& a) {
         deformations > 0 ? static_cast<double>(deformation_iterations) / static_cast<double>(deformations) : 0.0);
   run.timings().add("moisture steps", seconds_diffusion);
   run.timings().add("deformation steps", seconds_deformation);
+  run.timings().add("skin frames", seconds_skin);
   write_plots(run, rows, model.body.part_names);
+
+  // The skin over time, read back from its frames (so a resumed run writes the same as one run straight through).
+  Stopwatch skin_out_watch;
+  std::vector<SkinFrame> skin_frames;
+  std::vector<std::string> maps;
+  for (const PvdEntry& e : skin_series.entries()) {
+    skin_frames.push_back(read_skin_frame(run.file(e.file), model.body.skin.vertex_count(), e.time));
+    if (skin.has_maps()) {
+      std::string map = std::filesystem::path(e.file).replace_extension(".png").generic_string();
+      map.replace(map.rfind("frame_"), 6, "colour_");  // skin/frame_NNNN.vtu -> skin/colour_NNNN.png
+      maps.push_back(read_file(run.file(map)));
+      run.add_output(map);
+    }
+    run.add_output(e.file);
+  }
+  write_skin_glb(run.file("skin.glb"), skin.rest_skin(), skin_frames, maps);
+  run.add_output("skin.glb");
+  run.timings().add("skin GLB", skin_out_watch.seconds());
+  const Vec3 fresh = mean_skin_colour(skin.rest_skin(), skin_frames.front());
+  const Vec3 dried = mean_skin_colour(skin.rest_skin(), skin_frames.back());
+  run.facts()["skin_frames"] = skin_frames.size();
+  run.facts()["skin_mean_colour_start"] = {fresh[0], fresh[1], fresh[2]};
+  run.facts()["skin_mean_colour_end"] = {dried[0], dried[1], dried[2]};
+  const double moisture_end = mean_skin_moisture(skin.rest_skin(), skin_frames.back());
+  run.facts()["skin_mean_moisture_end"] = moisture_end;
+  std::printf(
+      "skin: %zu frames in skin.glb; mean moisture ratio %.2f at the end; mean linear colour (%.3f, %.3f, %.3f) -> "
+      "(%.3f, %.3f, %.3f)\n",
+      skin_frames.size(), moisture_end, fresh[0], fresh[1], fresh[2], dried[0], dried[1], dried[2]);
 
   const DesiccationTotals& t0 = rows.front().totals;
   const DesiccationTotals& t1 = rows.back().totals;
@@ -308,12 +367,19 @@ int run_mummify(const MummifyArgs& a) {
     cells.push_back({shrunk, std::string(caption) + ": shrunken over the original"});
     write_png(run.file("mummify_sheet.png"), make_sheet(cells, 2, "forensim mummify: " + kind));
     run.add_output("mummify_sheet.png");
+    write_png(run.file("skin_timeline.png"), skin_timeline_sheet(skin.rest_skin(), skin_frames, views.axes,
+                                                                 views.outside, settings, kind + " skin drying"));
+    write_png(run.file("skin_turntable.png"), skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8,
+                                                                   settings, kind + ", " + caption));
+    for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
     run.timings().add("pictures", picture_watch.seconds());
   }
   run.write_record();
   std::printf("wrote %s (%s)\n", run.path().string().c_str(), format_seconds(watch.seconds()).c_str());
   return 0;
 }
+
+namespace {
 
 const RegisterCommand mummify_command{
     "mummify", [](CLI::App& app) {
@@ -335,6 +401,13 @@ const RegisterCommand mummify_command{
       sub->add_option("-o,--out", a->out, "Output folder");
       sub->add_flag("--resume", a->resume, "Continue from the checkpoint in the output folder");
       sub->add_flag("--no-pictures", a->no_pictures, "Skip the renders (curves and plots are still written)");
+      sub->add_option("--gravity", a->gravity, "Direction of gravity x y z in the model frame (livor mortis)")
+          ->expected(3);
+      sub->add_option("--contact-mm", a->contact_mm,
+                      "Skin within this distance of the supporting plane is pressure-pale (< 0: no contact)")
+          ->check(CLI::Range(-1.0, 1000.0));
+      sub->add_option("--map-size", a->map_size, "Texels per side of the baked skin colour maps (0: none)")
+          ->check(CLI::Range(0, 8192));
       sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(64, 4096));
       return [a]() { return run_mummify(*a); };
     }};

@@ -8,6 +8,37 @@
 #include "server/served_path.hpp"
 
 namespace forensim::cli {
+namespace {
+
+/// The "skin" object: livor mortis start state and shading (section 8.3).
+SkinShadingJob load_skin_job(const MummifyArgs& a, const JobNode& node, const Vec3& up) {
+  SkinShadingJob skin;
+  std::vector<double> g =
+      a.given("--gravity") ? a.gravity : node.get<std::vector<double>>("gravity", {-up[0], -up[1], -up[2]});
+  if (g.size() != 3) node.fail("gravity", "needs three numbers [x, y, z]");
+  skin.gravity = Vec3(g[0], g[1], g[2]);
+  if (!skin.gravity.allFinite() || skin.gravity.norm() < 1e-12)
+    node.fail("gravity", "must be a finite, non-zero vector");
+  skin.gravity.normalize();
+  skin.contact_distance_mm =
+      a.given("--contact-mm") ? a.contact_mm : node.get_number("contact_distance_mm", a.contact_mm, -1.0, 1000.0);
+  skin.map_resolution =
+      static_cast<int>(a.given("--map-size") ? a.map_size : node.get_integer("map_resolution", a.map_size, 0, 8192));
+  if (skin.map_resolution != 0 && skin.map_resolution < 16) node.fail("map_resolution", "must be 0 (no maps) or >= 16");
+  LivorSettings& l = skin.livor;
+  l.blood_fill = node.get_number("blood_fill", l.blood_fill, 0.001, 1.0);
+  l.residual_fill = node.get_number("residual_fill", l.residual_fill, 0.0, 0.999);
+  if (l.residual_fill >= l.blood_fill) node.fail("residual_fill", "must be below blood_fill");
+  l.transition_mm = node.get_number("transition_mm", l.transition_mm, 0.0, 1e4);
+  l.contact_capacity = node.get_number("contact_capacity", l.contact_capacity, 0.0, 1.0);
+  l.oxygen = node.get_number("oxygen", l.oxygen, 0.0, 1.0);
+  SkinShadingSettings& s = skin.shading;
+  s.drying_boost = node.get_number("drying_boost", s.drying_boost, 0.0, 4.0);
+  s.oxygen_decay_hours = node.get_number("oxygen_decay_hours", s.oxygen_decay_hours, 0.01, 1e5);
+  return skin;
+}
+
+}  // namespace
 
 MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
   MummifyJob job;
@@ -42,6 +73,7 @@ MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
   t.skin_permeance_m_per_s = tissue.get_number("skin_permeance_m_per_s", t.skin_permeance_m_per_s, 1e-9, 10.0);
   job.settings.deform = root.get<bool>("deform", true);
   job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
+  job.skin = load_skin_job(a, root.child("skin"), e.up);
   return job;
 }
 

@@ -6,14 +6,18 @@
 ///    "environment": {"temperature_c", "humidity_percent", "wind_m_per_s", "body_diameter_m", "skin_cover",
 ///                    "on_ground", "ground_height_mm"},
 ///    "tissue": {"initial_water_percent", "diffusivity_m2_per_s", "diffusivity_drying_exponent",
-///               "shrinkage_efficiency", "skin_permeance_m_per_s"}}
+///               "shrinkage_efficiency", "skin_permeance_m_per_s"},
+///    "skin": {"gravity", "contact_distance_mm", "map_resolution", "blood_fill", "residual_fill", "transition_mm",
+///             "contact_capacity", "oxygen", "drying_boost", "oxygen_decay_hours"}}
 
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "core/job.hpp"
 #include "desiccation/desiccation_sim.hpp"
+#include "mummify_skin.hpp"
 #include "server/job_manager.hpp"
 
 namespace forensim::cli {
@@ -22,7 +26,9 @@ namespace forensim::cli {
 struct MummifyArgs {
   std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
   double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
-  int frames = 6, picture_size = 480;
+  int frames = 6, picture_size = 480, map_size = 512;
+  std::vector<double> gravity;  ///< --gravity x y z (empty: the job's, or down)
+  double contact_mm = 3.0;
   bool resume = false, no_pictures = false;
   CLI::App* sub = nullptr;  ///< null: nothing was given on a command line (the server)
   bool given(const std::string& option) const { return sub != nullptr && sub->get_option(option)->count() > 0; }
@@ -35,6 +41,7 @@ struct MummifyJob {
   int frames = 0;
   long long deform_every = 4;  ///< quasi-static shape solved every this many steps (and at frames)
   DesiccationSettings settings;
+  SkinShadingJob skin;  ///< the "skin" object: livor mortis start state and shading
 };
 
 /// Reads a mummify job from `root` (a job file's root, or the "job" object of a server request). Throws

@@ -165,6 +165,8 @@ void add_node(tinygltf::Model& model, ModelBuilder& builder, const GltfMeshNode&
                 "default weights", "count differs from the number of morph targets");
   require_input(node.translation.allFinite() && node.rotation.coeffs().allFinite() && node.rotation.norm() > 0.0,
                 source, "transform", "translation or rotation is not finite");
+  require_input(std::isfinite(node.scale) && node.scale >= 0.0, source, "transform",
+                "scale is not a finite number >= 0");
 
   const SeamSplitMesh split = split_uv_seams(mesh);
   tinygltf::Primitive primitive;
@@ -263,7 +265,63 @@ void add_node(tinygltf::Model& model, ModelBuilder& builder, const GltfMeshNode&
   }
   const Eigen::Quaterniond q = node.rotation.normalized();
   if (!q.isApprox(Eigen::Quaterniond::Identity(), 0.0)) gltf_node.rotation = {q.x(), q.y(), q.z(), q.w()};
+  if (node.scale != 1.0) gltf_node.scale = {node.scale, node.scale, node.scale};
   model.nodes.push_back(std::move(gltf_node));
+}
+
+/// Keyframe times as 32-bit floats, checked finite, >= 0 and strictly increasing.
+std::vector<float> keyframe_times(const std::vector<double>& times_s, const std::string& source) {
+  require_input(!times_s.empty(), source, "times", "no keyframes");
+  std::vector<float> times;
+  for (std::size_t k = 0; k < times_s.size(); ++k) {
+    const std::string location = "keyframe " + std::to_string(k);
+    const double t = times_s[k];
+    require_input(std::isfinite(t) && t >= 0.0, source, location, "time is not a finite number >= 0");
+    require_input(k == 0 || static_cast<float>(t) > times.back(), source, location,
+                  "times must increase strictly (as 32-bit floats)");
+    times.push_back(static_cast<float>(t));
+  }
+  return times;
+}
+
+/// Adds a sampler and its channel to the glTF animation called `name` (created when new).
+void add_channel(tinygltf::Model& model, ModelBuilder& builder, const std::string& name,
+                 const std::vector<float>& times, const std::vector<float>& values, GltfInterpolation interpolation,
+                 std::size_t node, const std::string& path) {
+  auto it = std::find_if(model.animations.begin(), model.animations.end(),
+                         [&](const tinygltf::Animation& a) { return a.name == name; });
+  if (it == model.animations.end()) {
+    tinygltf::Animation created;
+    created.name = name;
+    model.animations.push_back(std::move(created));
+    it = model.animations.end() - 1;
+  }
+  tinygltf::AnimationSampler sampler;
+  sampler.input = builder.add_floats(times, 1, 0, true);  // input accessors need min/max
+  sampler.output = builder.add_floats(values, path == "scale" ? 3 : 1, 0, false);
+  sampler.interpolation = interpolation == GltfInterpolation::step ? "STEP" : "LINEAR";
+  tinygltf::AnimationChannel channel;
+  channel.sampler = static_cast<int>(it->samplers.size());
+  channel.target_node = static_cast<int>(node);
+  channel.target_path = path;
+  it->samplers.push_back(sampler);
+  it->channels.push_back(channel);
+}
+
+void add_scale_animation(tinygltf::Model& model, ModelBuilder& builder, const GltfScene& scene,
+                         const NodeScaleAnimation& animation) {
+  const std::string source = "glTF animation '" + animation.name + "'";
+  require_input(animation.node < scene.nodes.size(), source, "node",
+                "node " + std::to_string(animation.node) + " does not exist");
+  const std::vector<float> times = keyframe_times(animation.times_s, source);
+  require_input(animation.scales.size() == times.size(), source, "scales",
+                std::to_string(animation.scales.size()) + " scales for " + std::to_string(times.size()) + " keyframes");
+  std::vector<float> values;
+  for (double s : animation.scales) {
+    require_input(std::isfinite(s) && s >= 0.0, source, "scales", "scale is not a finite number >= 0");
+    values.insert(values.end(), 3, static_cast<float>(s));
+  }
+  add_channel(model, builder, animation.name, times, values, animation.interpolation, animation.node, "scale");
 }
 
 void add_animation(tinygltf::Model& model, ModelBuilder& builder, const GltfScene& scene,
@@ -273,18 +331,13 @@ void add_animation(tinygltf::Model& model, ModelBuilder& builder, const GltfScen
                 "node " + std::to_string(animation.node) + " does not exist");
   const std::size_t targets = scene.nodes[animation.node].morph_targets.size();
   require_input(targets > 0, source, "node", "the animated node has no morph targets");
-  require_input(!animation.times_s.empty(), source, "times", "no keyframes");
+  const std::vector<float> times = keyframe_times(animation.times_s, source);
   require_input(animation.weights.size() == animation.times_s.size(), source, "weights",
                 std::to_string(animation.weights.size()) + " weight rows for " +
                     std::to_string(animation.times_s.size()) + " keyframes");
-  std::vector<float> times, weights;
+  std::vector<float> weights;
   for (std::size_t k = 0; k < animation.times_s.size(); ++k) {
     const std::string location = "keyframe " + std::to_string(k);
-    const double t = animation.times_s[k];
-    require_input(std::isfinite(t) && t >= 0.0, source, location, "time is not a finite number >= 0");
-    require_input(k == 0 || static_cast<float>(t) > times.back(), source, location,
-                  "times must increase strictly (as 32-bit floats)");
-    times.push_back(static_cast<float>(t));
     require_input(
         animation.weights[k].size() == targets, source, location,
         std::to_string(animation.weights[k].size()) + " weights for " + std::to_string(targets) + " morph targets");
@@ -293,19 +346,7 @@ void add_animation(tinygltf::Model& model, ModelBuilder& builder, const GltfScen
       weights.push_back(static_cast<float>(w));
     }
   }
-  tinygltf::AnimationSampler sampler;
-  sampler.input = builder.add_floats(times, 1, 0, true);  // input accessors need min/max
-  sampler.output = builder.add_floats(weights, 1, 0, false);
-  sampler.interpolation = animation.interpolation == GltfInterpolation::step ? "STEP" : "LINEAR";
-  tinygltf::AnimationChannel channel;
-  channel.sampler = 0;
-  channel.target_node = static_cast<int>(animation.node);
-  channel.target_path = "weights";
-  tinygltf::Animation gltf_animation;
-  gltf_animation.name = animation.name;
-  gltf_animation.samplers.push_back(sampler);
-  gltf_animation.channels.push_back(channel);
-  model.animations.push_back(std::move(gltf_animation));
+  add_channel(model, builder, animation.name, times, weights, animation.interpolation, animation.node, "weights");
 }
 
 }  // namespace
@@ -327,6 +368,8 @@ void write_gltf(const std::filesystem::path& path, const GltfScene& scene, const
     gltf_scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
   }
   for (const MorphWeightAnimation& animation : scene.animations) add_animation(model, builder, scene, animation);
+  for (const NodeScaleAnimation& animation : scene.scale_animations)
+    add_scale_animation(model, builder, scene, animation);
   model.scenes.push_back(gltf_scene);
   model.defaultScene = 0;
   model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);

@@ -38,6 +38,7 @@ struct GltfMeshNode {
   GltfTextures textures;
   Vec3 translation = Vec3::Zero();                               ///< node translation, mm
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  ///< node rotation
+  double scale = 1.0;  ///< uniform node scale (>= 0; 0 hides the node until an animation shows it)
 };
 
 enum class GltfInterpolation { linear, step };
@@ -51,9 +52,23 @@ struct MorphWeightAnimation {
   GltfInterpolation interpolation = GltfInterpolation::linear;
 };
 
+/// Keyframed uniform scale of one node (glTF animation channel with path "scale"). With STEP interpolation
+/// between 0 and 1 it shows a node for a span of time: how a sequence of per-frame meshes (one node per frame,
+/// each with its own colours or textures) plays in Blender and three.js.
+struct NodeScaleAnimation {
+  std::string name;
+  std::size_t node = 0;         ///< index into GltfScene::nodes
+  std::vector<double> times_s;  ///< #K strictly increasing keyframe times, seconds
+  std::vector<double> scales;   ///< #K uniform scales (>= 0)
+  GltfInterpolation interpolation = GltfInterpolation::step;
+};
+
+/// Animations that share a name are written as the channels of one glTF animation (one clip that players
+/// run as a whole), in the order given: weight animations first, then scale animations.
 struct GltfScene {
   std::vector<GltfMeshNode> nodes;
   std::vector<MorphWeightAnimation> animations;
+  std::vector<NodeScaleAnimation> scale_animations;
 };
 
 struct GltfWriteOptions {

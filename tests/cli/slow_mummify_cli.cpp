@@ -2,17 +2,42 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "cli/cli_runner.hpp"
+#include "cli/glb_reader.hpp"
 #include "core/atomic_file.hpp"
+#include "core/types.hpp"
 #include "support/test_support.hpp"
 
 using namespace forensim;
 using test::run_cli;
 
+namespace {
+
+/// Per frame node of skin.glb: the mean of its COLOR_0 (linear RGB).
+std::vector<Vec3> frame_mean_colours(const test::Glb& glb) {
+  std::vector<Vec3> means;
+  for (const auto& node : glb.json.at("nodes")) {
+    const auto& primitive = glb.json.at("meshes").at(node.at("mesh").get<std::size_t>()).at("primitives").at(0);
+    const std::vector<float> rgba = glb.floats(primitive.at("attributes").at("COLOR_0").get<int>());
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) sum += Vec3(rgba[i], rgba[i + 1], rgba[i + 2]);
+    means.push_back(sum / std::max<double>(1.0, static_cast<double>(rgba.size() / 4)));
+  }
+  return means;
+}
+
+double luminance(const Vec3& c) {
+  return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+}  // namespace
+
 // End to end on the small arm phantom: the series, curves, plots, renders and run record are written; water
-// is conserved; a run resumed from its checkpoint ends in the same state as one run straight through.
+// is conserved; a run resumed from its checkpoint (each half on another thread count) ends in the same state
+// as one run straight through, and writes the same animated skin.
 TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   const auto dir = test::scratch_dir("mummify_cli_run");
   std::filesystem::remove_all(dir / "straight");
@@ -22,21 +47,83 @@ TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"desiccation.pvd", "volume/frame_0000.vtu", "volume/frame_0006.vtu", "curves.csv", "curves.png",
                         "curves_parts.png", "moisture_outside.png", "moisture_cut.png", "shrinkage.png",
-                        "mummify_sheet.png", "run.json", "checkpoint.bin"})
+                        "mummify_sheet.png", "run.json", "checkpoint.bin", "skin.glb", "skin.pvd",
+                        "skin/frame_0000.vtu", "skin/frame_0006.vtu", "skin_timeline.png", "skin_turntable.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "straight" / f)) << f;
   const auto record = nlohmann::json::parse(read_file(dir / "straight" / "run.json"));
   EXPECT_EQ(record["command"], "mummify");
   EXPECT_EQ(record["facts"]["inverted_tets"], 0);
   EXPECT_LT(record["facts"]["mass_percent"].get<double>(), 100.0);
   EXPECT_NEAR(record["facts"]["water_balance_error_kg"].get<double>(), 0.0, 1e-8);
+  EXPECT_EQ(record["facts"]["skin_frames"], 7);
+
+  // The GLB: one node per frame (start + 6), each but the last with one morph target to the next frame, and one
+  // clip "drying" of 6 weight channels (0 -> 1 while the frame is shown) and 7 STEP scale channels.
+  const test::Glb glb = test::parse_glb(read_file(dir / "straight" / "skin.glb"));
+  ASSERT_EQ(glb.json.at("nodes").size(), 7u);
+  for (std::size_t k = 0; k < 7; ++k) {
+    const auto& mesh = glb.json.at("meshes").at(glb.json.at("nodes")[k].at("mesh").get<std::size_t>());
+    const auto& primitive = mesh.at("primitives").at(0);
+    EXPECT_EQ(primitive.value("targets", nlohmann::json::array()).size(), k < 6 ? 1u : 0u) << k;
+    EXPECT_TRUE(primitive.at("attributes").contains("COLOR_0")) << k;
+    EXPECT_TRUE(primitive.at("attributes").contains("NORMAL")) << k;
+  }
+  ASSERT_EQ(glb.json.at("animations").size(), 1u);
+  const auto& clip = glb.json.at("animations")[0];
+  EXPECT_EQ(clip.at("name"), "drying");
+  int weights = 0, scales = 0;
+  for (const auto& channel : clip.at("channels")) {
+    const auto& sampler = clip.at("samplers").at(channel.at("sampler").get<std::size_t>());
+    const std::vector<float> out = glb.floats(sampler.at("output").get<int>());
+    if (channel.at("target").at("path") == "weights") {
+      ++weights;
+      EXPECT_EQ(out, (std::vector<float>{0.0f, 1.0f}));
+    } else {
+      ++scales;
+      EXPECT_EQ(sampler.at("interpolation"), "STEP");
+      EXPECT_EQ(out.size(), 21u);  // 7 keyframes of xyz
+    }
+  }
+  EXPECT_EQ(weights, 6);
+  EXPECT_EQ(scales, 7);
+  const std::vector<Vec3> colours = frame_mean_colours(glb);
+  EXPECT_LT(luminance(colours.back()), luminance(colours.front()));  // drying skin darkens
 
   // First half (3 days), then resume from its checkpoint to day 6.
-  r = run_cli("mummify -o " + (dir / "resumed").string() + " --days 3 --frames 3 --step-hours 12 --no-pictures");
+  // The halves run on 1 and 2 worker threads (the straight run on all cores): output must not depend on it.
+  r = run_cli("--threads 1 mummify -o " + (dir / "resumed").string() +
+              " --days 3 --frames 3 --step-hours 12 --no-pictures");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_cli("mummify -o " + (dir / "resumed").string() +
+  r = run_cli("--threads 2 mummify -o " + (dir / "resumed").string() +
               " --days 6 --frames 6 --step-hours 12 --no-pictures --resume");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("resuming at day 3"), std::string::npos) << r.output;
   // The same output frames (so the same steps with a shape solve): the final state is bit-identical.
   EXPECT_EQ(read_file(dir / "resumed" / "checkpoint.bin"), read_file(dir / "straight" / "checkpoint.bin"));
+  EXPECT_EQ(read_file(dir / "resumed" / "skin.glb"), read_file(dir / "straight" / "skin.glb"));
+  EXPECT_EQ(read_file(dir / "resumed" / "skin/frame_0006.vtu"), read_file(dir / "straight" / "skin/frame_0006.vtu"));
+}
+
+// Two months of drying: the skin's frames in the GLB get darker and browner (less blue against red) from the
+// livor mortis start state to the dried end, and the run's facts say the same of the area-weighted means.
+TEST(SlowMummifyCli, SkinDarkensAndBrownsAsItDries) {
+  const auto dir = test::scratch_dir("mummify_cli_skin_colour");
+  std::filesystem::remove_all(dir / "run");
+  const auto r =
+      run_cli("mummify -o " + (dir / "run").string() + " --days 60 --frames 2 --step-hours 48 --no-pictures");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const test::Glb glb = test::parse_glb(read_file(dir / "run" / "skin.glb"));
+  const std::vector<Vec3> colours = frame_mean_colours(glb);
+  ASSERT_EQ(colours.size(), 3u);
+  for (std::size_t k = 1; k < colours.size(); ++k) {
+    EXPECT_LT(luminance(colours[k]), luminance(colours[k - 1])) << k;
+  }
+  const Vec3 fresh = colours.front(), dried = colours.back();
+  EXPECT_LT(luminance(dried), 0.8 * luminance(fresh));
+  EXPECT_LT(dried[2] / dried[0], 0.95 * fresh[2] / fresh[0]);  // browner: blue falls faster than red
+  EXPECT_GT(dried[0], dried[1]);
+  EXPECT_GT(dried[1], dried[2]);
+  const auto facts = nlohmann::json::parse(read_file(dir / "run" / "run.json"))["facts"];
+  EXPECT_LT(facts["skin_mean_moisture_end"].get<double>(), 0.6);
+  EXPECT_LT(facts["skin_mean_colour_end"][2].get<double>(), facts["skin_mean_colour_start"][2].get<double>());
 }

@@ -43,3 +43,35 @@ TEST(MummifyCli, RejectsBadArguments) {
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(run_cli("mummify --help").output.find("--resume"), std::string::npos);
 }
+
+// The skin shading settings go through the same job loader: unknown keys and bad values in "skin" are job
+// errors naming the key, before anything is built or written.
+TEST(MummifyCli, RejectsBadSkinShadingKeys) {
+  const auto dir = test::scratch_dir("mummify_cli_skin_jobs");
+  const auto out = dir / "out";
+  std::filesystem::remove_all(out);
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"skin": {"gravty": [0, 0, -1]}})", "gravty"},
+      {R"({"skin": {"gravity": [0, 0]}})", "gravity"},
+      {R"({"skin": {"gravity": [0, 0, 0]}})", "gravity"},
+      {R"({"skin": {"gravity": "down"}})", "gravity"},
+      {R"({"skin": {"contact_distance_mm": 5000}})", "contact_distance_mm"},
+      {R"({"skin": {"map_resolution": 8}})", "map_resolution"},
+      {R"({"skin": {"drying_boost": 9}})", "drying_boost"},
+      {R"({"skin": {"blood_fill": 0.2, "residual_fill": 0.3}})", "residual_fill"},
+      {R"({"skin": {"oxygen_decay_hours": 0}})", "oxygen_decay_hours"},
+  };
+  for (const auto& [json, key] : cases) {
+    write_file_atomic(dir / "skin.json", json);
+    const auto r = run_cli("mummify " + (dir / "skin.json").string() + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 4) << json << "\n" << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << json << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out / "run.json")) << json;
+  }
+  // CLI flags for the common ones: --gravity takes exactly three numbers.
+  EXPECT_EQ(run_cli("mummify --gravity 0 -1 -o " + out.string()).exit_code, 2);
+  EXPECT_EQ(run_cli("mummify --contact-mm 5000 -o " + out.string()).exit_code, 2);
+  const std::string help = run_cli("mummify --help").output;
+  for (const char* flag : {"--gravity", "--contact-mm", "--map-size"})
+    EXPECT_NE(help.find(flag), std::string::npos) << flag;
+}

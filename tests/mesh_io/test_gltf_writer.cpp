@@ -205,3 +205,51 @@ TEST(GltfWriter, InconsistentMorphDataIsRejected) {
   EXPECT_THROW(write_gltf(dir / "d.glb", s.scene), InputError);
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
+
+// A per-frame sequence: a second node hidden at first (scale 0) and shown by a STEP scale animation that shares
+// the weight animation's name, so both land in one glTF animation (one clip) with their own samplers.
+TEST(GltfWriter, ScaleAnimationsJoinTheClipOfTheSameName) {
+  const auto dir = test::scratch_dir("scale-animation");
+  MorphScene s = morph_scene(GltfInterpolation::linear);
+  GltfMeshNode second;
+  second.name = "frame 1";
+  second.mesh = s.box;
+  second.scale = 0.0;
+  s.scene.nodes.push_back(second);
+  s.scene.scale_animations.push_back({"desiccation", 0, {0.0, 4.0}, {1.0, 0.0}, GltfInterpolation::step});
+  s.scene.scale_animations.push_back({"desiccation", 1, {0.0, 4.0}, {0.0, 1.0}, GltfInterpolation::step});
+  s.scene.scale_animations.push_back({"other", 1, {0.0}, {2.0}, GltfInterpolation::linear});
+  write_gltf(dir / "frames.glb", s.scene);
+  const tinygltf::Model model = load(dir / "frames.glb");
+  ASSERT_EQ(model.nodes.size(), 2u);
+  EXPECT_TRUE(model.nodes[0].scale.empty());  // scale 1 is glTF's default
+  EXPECT_EQ(model.nodes[1].scale, (std::vector<double>{0.0, 0.0, 0.0}));
+  ASSERT_EQ(model.animations.size(), 2u);
+  const tinygltf::Animation& clip = model.animations[0];
+  EXPECT_EQ(clip.name, "desiccation");
+  ASSERT_EQ(clip.channels.size(), 3u);
+  ASSERT_EQ(clip.samplers.size(), 3u);
+  EXPECT_EQ(clip.channels[0].target_path, "weights");
+  for (int c = 1; c < 3; ++c) {
+    const tinygltf::AnimationChannel& channel = clip.channels[static_cast<std::size_t>(c)];
+    EXPECT_EQ(channel.target_path, "scale");
+    EXPECT_EQ(channel.target_node, c - 1);
+    EXPECT_EQ(channel.sampler, c);
+    const tinygltf::AnimationSampler& sampler = clip.samplers[static_cast<std::size_t>(c)];
+    EXPECT_EQ(sampler.interpolation, "STEP");
+    EXPECT_EQ(floats(model, sampler.input), (std::vector<float>{0.0f, 4.0f}));
+    const float a = c == 1 ? 1.0f : 0.0f, b = 1.0f - a;
+    EXPECT_EQ(floats(model, sampler.output), (std::vector<float>{a, a, a, b, b, b}));
+  }
+  EXPECT_EQ(model.animations[1].name, "other");
+  EXPECT_EQ(model.animations[1].channels.size(), 1u);
+
+  s.scene.scale_animations[0].scales = {1.0, -1.0};
+  EXPECT_THROW(write_gltf(dir / "bad.glb", s.scene), InputError);
+  s.scene.scale_animations[0].scales = {1.0};
+  EXPECT_THROW(write_gltf(dir / "bad.glb", s.scene), InputError);
+  s.scene.scale_animations[0].scales = {1.0, 0.0};
+  s.scene.nodes[1].scale = -1.0;
+  EXPECT_THROW(write_gltf(dir / "bad.glb", s.scene), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.glb"));
+}
