@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 #include "core/error.hpp"
@@ -32,8 +31,14 @@ constexpr std::size_t constraint_grain = 1024;
 
 /// Per-vertex (per-edge, per-face) loops: a few thousand items per task, so a small skin runs on one thread
 /// and a large one in a few tasks.
-void for_each_item(std::size_t n, const std::function<void(std::size_t)>& body) {
-  parallel_for(0, n, body, 2048);
+template <class F>
+void for_each_item(std::size_t n, const F& body) {
+  parallel_for_chunks(
+      0, n,
+      [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) body(i);
+      },
+      2048);
 }
 
 struct Contact {
@@ -198,7 +203,27 @@ SkinState initial_skin_state(const SkinModel& model) {
   return state;
 }
 
-SkinSimulation::SkinSimulation(const SkinModel& model) : m_model(model) {}
+SkinSimulation::SkinSimulation(const SkinModel& model) : m_model(model) {
+  m_stretch_offsets.push_back(0);
+  for (const auto& group : model.stretch_groups) {
+    for (std::uint32_t e : group) {
+      const auto& ab = model.stretch.edge_vertices[e];
+      m_stretch_vertices.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
+      m_stretch_rest.push_back(model.stretch.edge_rest_length[e]);
+    }
+    m_stretch_offsets.push_back(m_stretch_vertices.size());
+  }
+  m_bending_offsets.push_back(0);
+  for (const auto& group : model.bending_groups) {
+    for (std::uint32_t b : group) {
+      const auto& q = model.bending.quad_vertices[b];
+      m_bending_vertices.push_back({static_cast<std::uint32_t>(q[0]), static_cast<std::uint32_t>(q[1]),
+                                    static_cast<std::uint32_t>(q[2]), static_cast<std::uint32_t>(q[3])});
+      m_bending_rest.push_back(model.bending.rest_angle[b]);
+    }
+    m_bending_offsets.push_back(m_bending_vertices.size());
+  }
+}
 
 SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& volume_node_positions,
                                     const std::vector<double>& vertex_moisture_ratio, double dt_s) {
@@ -242,20 +267,20 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     m_tracking_points[i] = tracking_point(tracking, i, volume_node_positions);
     m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
   });
-  m_edge_stiffness.resize(model.stretch.size());
-  m_edge_rest_length.resize(model.stretch.size());
-  for_each_item(model.stretch.size(), [&](std::size_t e) {
-    const auto& [a, b] = model.stretch.edge_vertices[e];
+  m_edge_stiffness.resize(m_stretch_vertices.size());
+  m_edge_rest_length.resize(m_stretch_vertices.size());
+  for_each_item(m_stretch_vertices.size(), [&](std::size_t e) {
+    const auto& [a, b] = m_stretch_vertices[e];
     const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
     m_edge_stiffness[e] = per_iteration(
         settings.stretch_stiffness_dry + (settings.stretch_stiffness_wet - settings.stretch_stiffness_dry) * m,
         iterations);
-    m_edge_rest_length[e] = model.stretch.edge_rest_length[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
+    m_edge_rest_length[e] = m_stretch_rest[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
   });
-  m_pair_stiffness.resize(model.bending.size());
-  for_each_item(model.bending.size(), [&](std::size_t b) {
+  m_pair_stiffness.resize(m_bending_vertices.size());
+  for_each_item(m_bending_vertices.size(), [&](std::size_t b) {
     double m = 0.0;
-    for (Index q : model.bending.quad_vertices[b]) m += 0.25 * moisture(static_cast<std::size_t>(q));
+    for (std::uint32_t q : m_bending_vertices[b]) m += 0.25 * moisture(q);
     m_pair_stiffness[b] = per_iteration(
         settings.bending_stiffness_dry + (settings.bending_stiffness_wet - settings.bending_stiffness_dry) * m,
         iterations);
@@ -316,39 +341,33 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     }
   });
 
-  // 5. Gauss-Seidel iterations over independent groups.
+  // 5. Gauss-Seidel iterations over independent groups, in colour order from the flat slot arrays.
+  const std::size_t stretch_colours = m_stretch_offsets.size() - 1, bending_colours = m_bending_offsets.size() - 1;
   for (int it = 0; it < iterations; ++it) {
-    for (const auto& group : model.stretch_groups) {
+    for (std::size_t colour = 0; colour < stretch_colours; ++colour) {
       parallel_for_chunks(
-          0, group.size(),
+          m_stretch_offsets[colour], m_stretch_offsets[colour + 1],
           [&](std::size_t lo, std::size_t hi) {
-            for (std::size_t g = lo; g < hi; ++g) {
-              const std::uint32_t e = group[g];
-              const auto a = static_cast<std::size_t>(model.stretch.edge_vertices[e][0]);
-              const auto b = static_cast<std::size_t>(model.stretch.edge_vertices[e][1]);
+            for (std::size_t s = lo; s < hi; ++s) {
+              const std::uint32_t a = m_stretch_vertices[s][0], b = m_stretch_vertices[s][1];
               const PairCorrection d =
-                  project_stretch(p[a], p[b], w[a], w[b], m_edge_rest_length[e], m_edge_stiffness[e]);
+                  project_stretch(p[a], p[b], w[a], w[b], m_edge_rest_length[s], m_edge_stiffness[s]);
               p[a] += d.dp0;
               p[b] += d.dp1;
             }
           },
           constraint_grain);
     }
-    for (const auto& group : model.bending_groups) {
+    for (std::size_t colour = 0; colour < bending_colours; ++colour) {
       parallel_for_chunks(
-          0, group.size(),
+          m_bending_offsets[colour], m_bending_offsets[colour + 1],
           [&](std::size_t lo, std::size_t hi) {
-            for (std::size_t g = lo; g < hi; ++g) {
-              const std::uint32_t c = group[g];
-              const auto& q = model.bending.quad_vertices[c];
-              const std::size_t i0 = static_cast<std::size_t>(q[0]), i1 = static_cast<std::size_t>(q[1]),
-                                i2 = static_cast<std::size_t>(q[2]), i3 = static_cast<std::size_t>(q[3]);
-              const auto d = project_bending({p[i0], p[i1], p[i2], p[i3]}, Vec4(w[i0], w[i1], w[i2], w[i3]),
-                                             model.bending.rest_angle[c], m_pair_stiffness[c]);
-              p[i0] += d[0];
-              p[i1] += d[1];
-              p[i2] += d[2];
-              p[i3] += d[3];
+            for (std::size_t s = lo; s < hi; ++s) {
+              const auto& q = m_bending_vertices[s];
+              const auto d =
+                  project_bending({p[q[0]], p[q[1]], p[q[2]], p[q[3]]}, Vec4(w[q[0]], w[q[1]], w[q[2]], w[q[3]]),
+                                  m_bending_rest[s], m_pair_stiffness[s]);
+              for (int k = 0; k < 4; ++k) p[q[k]] += d[k];
             }
           },
           constraint_grain);

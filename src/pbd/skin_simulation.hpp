@@ -22,6 +22,8 @@
 /// Model (rest skin, constraints with their rest data, tracking, collision candidates) is apart from State
 /// (positions, velocities). Lengths in mm, time in s, moisture as a ratio of the initial moisture in [0, 1].
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -124,7 +126,9 @@ struct SkinStepReport {
   double seconds = 0.0;
 };
 
-/// Setup-once, step-many skin solver (keeps scratch buffers; the model is kept by reference).
+/// Setup-once, step-many skin solver (keeps scratch buffers; the model is kept by reference). The constructor
+/// lays the stretch and bending constraints out colour by colour in flat arrays (vertex indices, rest data),
+/// so each Gauss-Seidel pass over a colour streams through contiguous memory.
 class SkinSimulation {
  public:
   explicit SkinSimulation(const SkinModel& model);
@@ -139,7 +143,13 @@ class SkinSimulation {
   const SkinModel& m_model;
   std::vector<Vec3> m_tracking_points, m_frame_velocities, m_face_normals, m_predicted, m_plane_points, m_plane_normals;
   std::vector<double> m_tracking_stiffness, m_edge_stiffness, m_edge_rest_length, m_pair_stiffness, m_attach_radius;
-  std::vector<std::uint8_t> m_outward, m_has_plane;
+  std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
+  // Constraints in colour order: slot s of colour c lies in [offsets[c], offsets[c + 1]).
+  std::vector<std::size_t> m_stretch_offsets, m_bending_offsets;
+  std::vector<std::array<std::uint32_t, 2>> m_stretch_vertices;  ///< per slot
+  std::vector<double> m_stretch_rest;                            ///< per slot, model rest length
+  std::vector<std::array<std::uint32_t, 4>> m_bending_vertices;  ///< per slot
+  std::vector<double> m_bending_rest;                            ///< per slot, rest angle
 };
 
 /// Moisture ratio of every skin vertex: the node moisture interpolated at the tracking point (the
