@@ -57,6 +57,10 @@ Contact detect_contact(const SkinModel& model, std::size_t i, const Vec3& p, con
     const Vec3& a = nodes[static_cast<std::size_t>(tri[0])];
     const Vec3& b = nodes[static_cast<std::size_t>(tri[1])];
     const Vec3& c = nodes[static_cast<std::size_t>(tri[2])];
+    // The distance to the face's plane bounds the distance to the face from below: a face whose plane is no
+    // nearer than the best face so far cannot win.
+    const double plane = face_normals[f].dot(p - a);
+    if (plane * plane >= best_distance) continue;
     const Vec3 w = closest_point_on_triangle(p, a, b, c);
     const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
     const double d = (p - q).squaredNorm();
@@ -109,6 +113,7 @@ void SkinSettings::validate(const std::string& source) const {
   require_fraction(wrinkle.damping, source, "wrinkle.damping");
   slippage.validate(source + " slippage");
   require_input(iterations >= 1 && iterations <= 1000, source, "iterations", "must lie in [1, 1000]");
+  require_input(bending_interval >= 1 && bending_interval <= 1000, source, "bending_interval", "must lie in [1, 1000]");
   require_fraction(stretch_stiffness_wet, source, "stretch_stiffness_wet");
   require_fraction(stretch_stiffness_dry, source, "stretch_stiffness_dry");
   require_input(std::isfinite(skin_shrinkage) && skin_shrinkage >= 0.0 && skin_shrinkage < 1.0, source,
@@ -263,10 +268,14 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     const double m = vertex_moisture_ratio[i];
     return std::isfinite(m) ? std::clamp(m, 0.0, 1.0) : 1.0;
   };
+  m_tracking_pass_stiffness.resize(n);
   for_each_item(n, [&](std::size_t i) {
     m_tracking_points[i] = tracking_point(tracking, i, volume_node_positions);
     m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
+    m_tracking_pass_stiffness[i] = per_iteration(m_tracking_stiffness[i], iterations);
   });
+  const int bending_interval = std::min(settings.bending_interval, iterations);
+  const int bending_passes = (iterations + bending_interval - 1) / bending_interval;
   m_edge_stiffness.resize(m_stretch_vertices.size());
   m_edge_rest_length.resize(m_stretch_vertices.size());
   for_each_item(m_stretch_vertices.size(), [&](std::size_t e) {
@@ -283,7 +292,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     for (std::uint32_t q : m_bending_vertices[b]) m += 0.25 * moisture(q);
     m_pair_stiffness[b] = per_iteration(
         settings.bending_stiffness_dry + (settings.bending_stiffness_wet - settings.bending_stiffness_dry) * m,
-        iterations);
+        bending_passes);
   });
 
   // 2. External forces and the pull of inward-facing connections (eq. 34), before damping.
@@ -358,7 +367,9 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
           },
           constraint_grain);
     }
-    for (std::size_t colour = 0; colour < bending_colours; ++colour) {
+    // Bending on the last iteration and every bending_interval-th before it.
+    const bool bend = (iterations - 1 - it) % bending_interval == 0;
+    for (std::size_t colour = 0; bend && colour < bending_colours; ++colour) {
       parallel_for_chunks(
           m_bending_offsets[colour], m_bending_offsets[colour + 1],
           [&](std::size_t lo, std::size_t hi) {
@@ -377,8 +388,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
       } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
-        p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i],
-                                 per_iteration(m_tracking_stiffness[i], iterations))
+        p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i])
                     .dp0;
       }
       if (m_has_plane[i])

@@ -57,8 +57,13 @@ enum class DampingFrame {
 struct SkinSettings {
   WrinkleControls wrinkle;
   DampingFrame damping_frame = DampingFrame::volume;
-  SlippageLaw slippage;                ///< tracking stiffness k_t and the thresholds of eq. 35
-  int iterations = 8;                  ///< Gauss-Seidel iterations per step
+  SlippageLaw slippage;  ///< tracking stiffness k_t and the thresholds of eq. 35
+  int iterations = 8;    ///< Gauss-Seidel iterations per step
+  /// Bending constraints are projected on every bending_interval-th iteration only (the last included), with
+  /// the per-iteration stiffness of that many passes (an interval above `iterations` acts as `iterations`): bending is
+  /// the costliest projection and the skin's bending stiffness is low, so fewer passes hold it about as well. 1
+  /// projects it on every iteration.
+  int bending_interval = 2;
   double stretch_stiffness_wet = 0.3;  ///< stretch stiffness of fresh skin (moisture ratio 1), in [0, 1]
   double stretch_stiffness_dry = 0.8;  ///< ... of fully dried skin (ratio 0): leathery
   /// Fraction by which the skin's edges shorten when fully dried ("the skin compresses due to water loss",
@@ -142,7 +147,8 @@ class SkinSimulation {
  private:
   const SkinModel& m_model;
   std::vector<Vec3> m_tracking_points, m_frame_velocities, m_face_normals, m_predicted, m_plane_points, m_plane_normals;
-  std::vector<double> m_tracking_stiffness, m_edge_stiffness, m_edge_rest_length, m_pair_stiffness, m_attach_radius;
+  std::vector<double> m_tracking_stiffness, m_tracking_pass_stiffness, m_edge_stiffness, m_edge_rest_length,
+      m_pair_stiffness, m_attach_radius;
   std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
   // Constraints in colour order: slot s of colour c lies in [offsets[c], offsets[c + 1]).
   std::vector<std::size_t> m_stretch_offsets, m_bending_offsets;
