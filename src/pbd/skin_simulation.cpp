@@ -168,6 +168,10 @@ SkinModel make_skin_model(const BodyModel& body, const SkinSettings& settings) {
   model.r_max_mm = settings.wrinkle.r_max_relative * model.model_size_mm;
 
   model.tracking = body.tracking;
+  model.vertex_tracking_offset.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    model.vertex_tracking_offset[i] =
+        model.vertex_rest_position[i] - tracking_point(body.tracking, i, body.volume.positions);
   model.volume_node_count = body.volume.vertex_count();
   model.boundary_face_nodes.reserve(body.boundary_faces.size());
   for (const TetFace& f : body.boundary_faces) model.boundary_face_nodes.push_back(f.vertices);
@@ -262,6 +266,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   m_tracking_points.resize(n);
   m_tracking_stiffness.resize(n);
   m_attach_radius.resize(n);
+  m_anchors.resize(n);
   m_outward.assign(n, 0);
   std::vector<std::uint8_t> pulled(n, 0);
   auto moisture = [&](std::size_t i) {
@@ -307,11 +312,13 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     if (m_outward[i]) {
       // One-sided attachment: stiffness 1 and a constant radius, the connection's rest length.
       m_attach_radius[i] = tracking.rest_distance[i];
+      m_anchors[i] = t;
     } else {
       // r_max grows in proportion to the moisture loss (section 8.2), r_j = (1 - k_j) r_max (eq. 33).
-      m_attach_radius[i] = tracking_radius(tracking.rest_distance[i], k, (1.0 - moisture(i)) * model.r_max_mm);
+      m_anchors[i] = t + model.vertex_tracking_offset[i];
+      m_attach_radius[i] = tracking_radius(0.0, k, (1.0 - moisture(i)) * model.r_max_mm);
       if (k > 0.0) {
-        const Vec3 pull = tracking_pull(x[i], t, m_attach_radius[i], k);
+        const Vec3 pull = tracking_pull(x[i], m_anchors[i], m_attach_radius[i], k);
         if (pull.squaredNorm() > 0.0) {
           v[i] += pull / dt_s;
           pulled[i] = 1;
@@ -388,8 +395,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
       } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
-        p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i])
-                    .dp0;
+        p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i]).dp0;
       }
       if (m_has_plane[i])
         p[i] +=
@@ -418,7 +424,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       continue;
     }
     report.max_tracking_excess_mm =
-        std::max(report.max_tracking_excess_mm, tracking_value(x[i], m_tracking_points[i], m_attach_radius[i]));
+        std::max(report.max_tracking_excess_mm, tracking_value(x[i], m_anchors[i], m_attach_radius[i]));
   }
   state.tracking_points = m_tracking_points;
   state.time_s += dt_s;

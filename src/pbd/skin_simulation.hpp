@@ -6,7 +6,8 @@
 ///     tracking stiffness k_j from the skin's moisture (slippage, eq. 35) and the stretch and bending
 ///     stiffness from it (dry skin is stiffer: it turns leathery);
 ///  2. v += dt w f_ext; for inward-facing connections farther than r_j = (1 - k_j) r_max (eq. 33) from their
-///     tracking point, the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
+///     anchor (the tracking point plus the vertex's rest offset from it, so r_j is the lift-off from the
+///     volume's surface), the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
 ///     change in proportion to moisture loss" (section 8.2): a vertex with moisture ratio m uses (1 - m) r_max,
 ///     so fresh skin is held at its rest distance and dry skin may lift off by up to (1 - k_j) r_max;
 ///  3. velocity damping (k_damping; by default of the skin's velocity relative to its tracking point's, see
@@ -92,7 +93,12 @@ struct SkinModel {
   BendingConstraints bending;                       ///< #B
   ConstraintGroups stretch_groups, bending_groups;  ///< independent groups (colouring)
   TrackingConnections tracking;                     ///< #S, from the body model
-  std::vector<Tri> boundary_face_nodes;             ///< #F volume-node triples of the boundary faces (outward)
+  /// #S rest offset of each skin vertex from its tracking point (mm, p_i - t_i on the rest body): an
+  /// inward-facing connection holds the vertex within r_j of its anchor t_i + offset_i, so r_max bounds how far
+  /// the skin lifts off the volume. (The offset is not rotated with the volume: the volume's local rotations
+  /// under shrinkage are small.)
+  std::vector<Vec3> vertex_tracking_offset;
+  std::vector<Tri> boundary_face_nodes;  ///< #F volume-node triples of the boundary faces (outward)
   /// Collision candidates of vertex i: boundary faces vertex_collision_faces[offsets[i] .. offsets[i+1]) (the
   /// tracking face and the faces sharing a node with it).
   std::vector<Index> vertex_collision_offsets, vertex_collision_faces;
@@ -146,7 +152,8 @@ class SkinSimulation {
 
  private:
   const SkinModel& m_model;
-  std::vector<Vec3> m_tracking_points, m_frame_velocities, m_face_normals, m_predicted, m_plane_points, m_plane_normals;
+  std::vector<Vec3> m_tracking_points, m_anchors, m_frame_velocities, m_face_normals, m_predicted, m_plane_points,
+      m_plane_normals;
   std::vector<double> m_tracking_stiffness, m_tracking_pass_stiffness, m_edge_stiffness, m_edge_rest_length,
       m_pair_stiffness, m_attach_radius;
   std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
