@@ -2,27 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "core/error.hpp"
 
 namespace forensim {
-namespace {
-
-double wrap_angle(double a) {
-  constexpr double pi = std::numbers::pi;
-  while (a > pi) a -= 2.0 * pi;
-  while (a <= -pi) a += 2.0 * pi;
-  return a;
-}
-
-/// theta from the unnormalised face normals and the edge: atan2((nA x nB) . e, (nA . nB) |e|), the same angle
-/// as with unit vectors (both arguments carry the factor |nA| |nB| |e|) without three square roots.
-double angle_from_normals(const Vec3& na, const Vec3& nb, const Vec3& e, double edge_length) {
-  return std::atan2(na.cross(nb).dot(e), na.dot(nb) * edge_length);
-}
-
-}  // namespace
 
 double dihedral_angle(const Quad& x) {
   const Vec3 e = x[3] - x[2];
@@ -30,41 +13,11 @@ double dihedral_angle(const Quad& x) {
   const Vec3 nb = (x[3] - x[1]).cross(x[2] - x[1]);
   const double le = e.norm();
   if (na.squaredNorm() <= 0.0 || nb.squaredNorm() <= 0.0 || le <= 0.0) return 0.0;
-  return angle_from_normals(na, nb, e, le);
-}
-
-DihedralGradient dihedral_angle_gradient(const Quad& x) {
-  DihedralGradient out;
-  const Vec3 e = x[3] - x[2];
-  const Vec3 na = (x[2] - x[0]).cross(x[3] - x[0]);
-  const Vec3 nb = (x[3] - x[1]).cross(x[2] - x[1]);
-  const double la2 = na.squaredNorm(), lb2 = nb.squaredNorm(), le = e.norm();
-  if (la2 <= 0.0 || lb2 <= 0.0 || le <= 0.0) return out;
-  out.angle = angle_from_normals(na, nb, e, le);
-  // Bridson et al. 2003: |e| nA / |nA|^2 is the wing's gradient up to sign (nA / |nA| over the wing's height).
-  const Vec3 a = na / la2, b = nb / lb2;
-  const double inv_le = 1.0 / le;
-  out.gradient[0] = -le * a;
-  out.gradient[1] = -le * b;
-  out.gradient[2] = -((x[0] - x[3]).dot(e) * inv_le * a + (x[1] - x[3]).dot(e) * inv_le * b);
-  out.gradient[3] = -((x[2] - x[0]).dot(e) * inv_le * a + (x[2] - x[1]).dot(e) * inv_le * b);
-  return out;
+  return detail::angle_from_normals(na, nb, e, le);
 }
 
 double bending_value(const Quad& x, double rest_angle) {
-  return wrap_angle(dihedral_angle(x) - rest_angle);
-}
-
-std::array<Vec3, 4> project_bending(const Quad& x, const Vec4& w, double rest_angle, double stiffness) {
-  std::array<Vec3, 4> dp{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  const DihedralGradient g = dihedral_angle_gradient(x);
-  double denominator = 0.0;
-  for (int i = 0; i < 4; ++i) denominator += w[i] * g.gradient[i].squaredNorm();
-  if (!(denominator > 0.0)) return dp;
-  const double c = wrap_angle(g.angle - rest_angle);
-  const double s = stiffness * c / denominator;
-  for (int i = 0; i < 4; ++i) dp[i] = -s * w[i] * g.gradient[i];
-  return dp;
+  return detail::wrap_angle(dihedral_angle(x) - rest_angle);
 }
 
 BendingConstraints make_bending_constraints(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,

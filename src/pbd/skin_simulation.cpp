@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 #include "core/error.hpp"
@@ -32,8 +31,14 @@ constexpr std::size_t constraint_grain = 1024;
 
 /// Per-vertex (per-edge, per-face) loops: a few thousand items per task, so a small skin runs on one thread
 /// and a large one in a few tasks.
-void for_each_item(std::size_t n, const std::function<void(std::size_t)>& body) {
-  parallel_for(0, n, body, 2048);
+template <class F>
+void for_each_item(std::size_t n, const F& body) {
+  parallel_for_chunks(
+      0, n,
+      [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) body(i);
+      },
+      2048);
 }
 
 struct Contact {
@@ -52,6 +57,10 @@ Contact detect_contact(const SkinModel& model, std::size_t i, const Vec3& p, con
     const Vec3& a = nodes[static_cast<std::size_t>(tri[0])];
     const Vec3& b = nodes[static_cast<std::size_t>(tri[1])];
     const Vec3& c = nodes[static_cast<std::size_t>(tri[2])];
+    // The distance to the face's plane bounds the distance to the face from below: a face whose plane is no
+    // nearer than the best face so far cannot win.
+    const double plane = face_normals[f].dot(p - a);
+    if (plane * plane >= best_distance) continue;
     const Vec3 w = closest_point_on_triangle(p, a, b, c);
     const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
     const double d = (p - q).squaredNorm();
@@ -104,6 +113,7 @@ void SkinSettings::validate(const std::string& source) const {
   require_fraction(wrinkle.damping, source, "wrinkle.damping");
   slippage.validate(source + " slippage");
   require_input(iterations >= 1 && iterations <= 1000, source, "iterations", "must lie in [1, 1000]");
+  require_input(bending_interval >= 1 && bending_interval <= 1000, source, "bending_interval", "must lie in [1, 1000]");
   require_fraction(stretch_stiffness_wet, source, "stretch_stiffness_wet");
   require_fraction(stretch_stiffness_dry, source, "stretch_stiffness_dry");
   require_input(std::isfinite(skin_shrinkage) && skin_shrinkage >= 0.0 && skin_shrinkage < 1.0, source,
@@ -158,6 +168,10 @@ SkinModel make_skin_model(const BodyModel& body, const SkinSettings& settings) {
   model.r_max_mm = settings.wrinkle.r_max_relative * model.model_size_mm;
 
   model.tracking = body.tracking;
+  model.vertex_tracking_offset.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    model.vertex_tracking_offset[i] =
+        model.vertex_rest_position[i] - tracking_point(body.tracking, i, body.volume.positions);
   model.volume_node_count = body.volume.vertex_count();
   model.boundary_face_nodes.reserve(body.boundary_faces.size());
   for (const TetFace& f : body.boundary_faces) model.boundary_face_nodes.push_back(f.vertices);
@@ -198,7 +212,27 @@ SkinState initial_skin_state(const SkinModel& model) {
   return state;
 }
 
-SkinSimulation::SkinSimulation(const SkinModel& model) : m_model(model) {}
+SkinSimulation::SkinSimulation(const SkinModel& model) : m_model(model) {
+  m_stretch_offsets.push_back(0);
+  for (const auto& group : model.stretch_groups) {
+    for (std::uint32_t e : group) {
+      const auto& ab = model.stretch.edge_vertices[e];
+      m_stretch_vertices.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
+      m_stretch_rest.push_back(model.stretch.edge_rest_length[e]);
+    }
+    m_stretch_offsets.push_back(m_stretch_vertices.size());
+  }
+  m_bending_offsets.push_back(0);
+  for (const auto& group : model.bending_groups) {
+    for (std::uint32_t b : group) {
+      const auto& q = model.bending.quad_vertices[b];
+      m_bending_vertices.push_back({static_cast<std::uint32_t>(q[0]), static_cast<std::uint32_t>(q[1]),
+                                    static_cast<std::uint32_t>(q[2]), static_cast<std::uint32_t>(q[3])});
+      m_bending_rest.push_back(model.bending.rest_angle[b]);
+    }
+    m_bending_offsets.push_back(m_bending_vertices.size());
+  }
+}
 
 SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& volume_node_positions,
                                     const std::vector<double>& vertex_moisture_ratio, double dt_s) {
@@ -232,33 +266,38 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   m_tracking_points.resize(n);
   m_tracking_stiffness.resize(n);
   m_attach_radius.resize(n);
+  m_anchors.resize(n);
   m_outward.assign(n, 0);
   std::vector<std::uint8_t> pulled(n, 0);
   auto moisture = [&](std::size_t i) {
     const double m = vertex_moisture_ratio[i];
     return std::isfinite(m) ? std::clamp(m, 0.0, 1.0) : 1.0;
   };
+  m_tracking_pass_stiffness.resize(n);
   for_each_item(n, [&](std::size_t i) {
     m_tracking_points[i] = tracking_point(tracking, i, volume_node_positions);
     m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
+    m_tracking_pass_stiffness[i] = per_iteration(m_tracking_stiffness[i], iterations);
   });
-  m_edge_stiffness.resize(model.stretch.size());
-  m_edge_rest_length.resize(model.stretch.size());
-  for_each_item(model.stretch.size(), [&](std::size_t e) {
-    const auto& [a, b] = model.stretch.edge_vertices[e];
+  const int bending_interval = std::min(settings.bending_interval, iterations);
+  const int bending_passes = (iterations + bending_interval - 1) / bending_interval;
+  m_edge_stiffness.resize(m_stretch_vertices.size());
+  m_edge_rest_length.resize(m_stretch_vertices.size());
+  for_each_item(m_stretch_vertices.size(), [&](std::size_t e) {
+    const auto& [a, b] = m_stretch_vertices[e];
     const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
     m_edge_stiffness[e] = per_iteration(
         settings.stretch_stiffness_dry + (settings.stretch_stiffness_wet - settings.stretch_stiffness_dry) * m,
         iterations);
-    m_edge_rest_length[e] = model.stretch.edge_rest_length[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
+    m_edge_rest_length[e] = m_stretch_rest[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
   });
-  m_pair_stiffness.resize(model.bending.size());
-  for_each_item(model.bending.size(), [&](std::size_t b) {
+  m_pair_stiffness.resize(m_bending_vertices.size());
+  for_each_item(m_bending_vertices.size(), [&](std::size_t b) {
     double m = 0.0;
-    for (Index q : model.bending.quad_vertices[b]) m += 0.25 * moisture(static_cast<std::size_t>(q));
+    for (std::uint32_t q : m_bending_vertices[b]) m += 0.25 * moisture(q);
     m_pair_stiffness[b] = per_iteration(
         settings.bending_stiffness_dry + (settings.bending_stiffness_wet - settings.bending_stiffness_dry) * m,
-        iterations);
+        bending_passes);
   });
 
   // 2. External forces and the pull of inward-facing connections (eq. 34), before damping.
@@ -273,11 +312,13 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     if (m_outward[i]) {
       // One-sided attachment: stiffness 1 and a constant radius, the connection's rest length.
       m_attach_radius[i] = tracking.rest_distance[i];
+      m_anchors[i] = t;
     } else {
       // r_max grows in proportion to the moisture loss (section 8.2), r_j = (1 - k_j) r_max (eq. 33).
-      m_attach_radius[i] = tracking_radius(tracking.rest_distance[i], k, (1.0 - moisture(i)) * model.r_max_mm);
+      m_anchors[i] = t + model.vertex_tracking_offset[i];
+      m_attach_radius[i] = tracking_radius(0.0, k, (1.0 - moisture(i)) * model.r_max_mm);
       if (k > 0.0) {
-        const Vec3 pull = tracking_pull(x[i], t, m_attach_radius[i], k);
+        const Vec3 pull = tracking_pull(x[i], m_anchors[i], m_attach_radius[i], k);
         if (pull.squaredNorm() > 0.0) {
           v[i] += pull / dt_s;
           pulled[i] = 1;
@@ -316,39 +357,35 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     }
   });
 
-  // 5. Gauss-Seidel iterations over independent groups.
+  // 5. Gauss-Seidel iterations over independent groups, in colour order from the flat slot arrays.
+  const std::size_t stretch_colours = m_stretch_offsets.size() - 1, bending_colours = m_bending_offsets.size() - 1;
   for (int it = 0; it < iterations; ++it) {
-    for (const auto& group : model.stretch_groups) {
+    for (std::size_t colour = 0; colour < stretch_colours; ++colour) {
       parallel_for_chunks(
-          0, group.size(),
+          m_stretch_offsets[colour], m_stretch_offsets[colour + 1],
           [&](std::size_t lo, std::size_t hi) {
-            for (std::size_t g = lo; g < hi; ++g) {
-              const std::uint32_t e = group[g];
-              const auto a = static_cast<std::size_t>(model.stretch.edge_vertices[e][0]);
-              const auto b = static_cast<std::size_t>(model.stretch.edge_vertices[e][1]);
+            for (std::size_t s = lo; s < hi; ++s) {
+              const std::uint32_t a = m_stretch_vertices[s][0], b = m_stretch_vertices[s][1];
               const PairCorrection d =
-                  project_stretch(p[a], p[b], w[a], w[b], m_edge_rest_length[e], m_edge_stiffness[e]);
+                  project_stretch(p[a], p[b], w[a], w[b], m_edge_rest_length[s], m_edge_stiffness[s]);
               p[a] += d.dp0;
               p[b] += d.dp1;
             }
           },
           constraint_grain);
     }
-    for (const auto& group : model.bending_groups) {
+    // Bending on the last iteration and every bending_interval-th before it.
+    const bool bend = (iterations - 1 - it) % bending_interval == 0;
+    for (std::size_t colour = 0; bend && colour < bending_colours; ++colour) {
       parallel_for_chunks(
-          0, group.size(),
+          m_bending_offsets[colour], m_bending_offsets[colour + 1],
           [&](std::size_t lo, std::size_t hi) {
-            for (std::size_t g = lo; g < hi; ++g) {
-              const std::uint32_t c = group[g];
-              const auto& q = model.bending.quad_vertices[c];
-              const std::size_t i0 = static_cast<std::size_t>(q[0]), i1 = static_cast<std::size_t>(q[1]),
-                                i2 = static_cast<std::size_t>(q[2]), i3 = static_cast<std::size_t>(q[3]);
-              const auto d = project_bending({p[i0], p[i1], p[i2], p[i3]}, Vec4(w[i0], w[i1], w[i2], w[i3]),
-                                             model.bending.rest_angle[c], m_pair_stiffness[c]);
-              p[i0] += d[0];
-              p[i1] += d[1];
-              p[i2] += d[2];
-              p[i3] += d[3];
+            for (std::size_t s = lo; s < hi; ++s) {
+              const auto& q = m_bending_vertices[s];
+              const auto d =
+                  project_bending({p[q[0]], p[q[1]], p[q[2]], p[q[3]]}, Vec4(w[q[0]], w[q[1]], w[q[2]], w[q[3]]),
+                                  m_bending_rest[s], m_pair_stiffness[s]);
+              for (int k = 0; k < 4; ++k) p[q[k]] += d[k];
             }
           },
           constraint_grain);
@@ -358,9 +395,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
       } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
-        p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i],
-                                 per_iteration(m_tracking_stiffness[i], iterations))
-                    .dp0;
+        p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i]).dp0;
       }
       if (m_has_plane[i])
         p[i] +=
@@ -389,7 +424,7 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       continue;
     }
     report.max_tracking_excess_mm =
-        std::max(report.max_tracking_excess_mm, tracking_value(x[i], m_tracking_points[i], m_attach_radius[i]));
+        std::max(report.max_tracking_excess_mm, tracking_value(x[i], m_anchors[i], m_attach_radius[i]));
   }
   state.tracking_points = m_tracking_points;
   state.time_s += dt_s;

@@ -6,7 +6,8 @@
 ///     tracking stiffness k_j from the skin's moisture (slippage, eq. 35) and the stretch and bending
 ///     stiffness from it (dry skin is stiffer: it turns leathery);
 ///  2. v += dt w f_ext; for inward-facing connections farther than r_j = (1 - k_j) r_max (eq. 33) from their
-///     tracking point, the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
+///     anchor (the tracking point plus the vertex's rest offset from it, so r_j is the lift-off from the
+///     volume's surface), the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
 ///     change in proportion to moisture loss" (section 8.2): a vertex with moisture ratio m uses (1 - m) r_max,
 ///     so fresh skin is held at its rest distance and dry skin may lift off by up to (1 - k_j) r_max;
 ///  3. velocity damping (k_damping; by default of the skin's velocity relative to its tracking point's, see
@@ -22,6 +23,8 @@
 /// Model (rest skin, constraints with their rest data, tracking, collision candidates) is apart from State
 /// (positions, velocities). Lengths in mm, time in s, moisture as a ratio of the initial moisture in [0, 1].
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -55,8 +58,13 @@ enum class DampingFrame {
 struct SkinSettings {
   WrinkleControls wrinkle;
   DampingFrame damping_frame = DampingFrame::volume;
-  SlippageLaw slippage;                ///< tracking stiffness k_t and the thresholds of eq. 35
-  int iterations = 8;                  ///< Gauss-Seidel iterations per step
+  SlippageLaw slippage;  ///< tracking stiffness k_t and the thresholds of eq. 35
+  int iterations = 8;    ///< Gauss-Seidel iterations per step
+  /// Bending constraints are projected on every bending_interval-th iteration only (the last included), with
+  /// the per-iteration stiffness of that many passes (an interval above `iterations` acts as `iterations`): bending is
+  /// the costliest projection and the skin's bending stiffness is low, so fewer passes hold it about as well. 1
+  /// projects it on every iteration.
+  int bending_interval = 2;
   double stretch_stiffness_wet = 0.3;  ///< stretch stiffness of fresh skin (moisture ratio 1), in [0, 1]
   double stretch_stiffness_dry = 0.8;  ///< ... of fully dried skin (ratio 0): leathery
   /// Fraction by which the skin's edges shorten when fully dried ("the skin compresses due to water loss",
@@ -85,7 +93,12 @@ struct SkinModel {
   BendingConstraints bending;                       ///< #B
   ConstraintGroups stretch_groups, bending_groups;  ///< independent groups (colouring)
   TrackingConnections tracking;                     ///< #S, from the body model
-  std::vector<Tri> boundary_face_nodes;             ///< #F volume-node triples of the boundary faces (outward)
+  /// #S rest offset of each skin vertex from its tracking point (mm, p_i - t_i on the rest body): an
+  /// inward-facing connection holds the vertex within r_j of its anchor t_i + offset_i, so r_max bounds how far
+  /// the skin lifts off the volume. (The offset is not rotated with the volume: the volume's local rotations
+  /// under shrinkage are small.)
+  std::vector<Vec3> vertex_tracking_offset;
+  std::vector<Tri> boundary_face_nodes;  ///< #F volume-node triples of the boundary faces (outward)
   /// Collision candidates of vertex i: boundary faces vertex_collision_faces[offsets[i] .. offsets[i+1]) (the
   /// tracking face and the faces sharing a node with it).
   std::vector<Index> vertex_collision_offsets, vertex_collision_faces;
@@ -124,7 +137,9 @@ struct SkinStepReport {
   double seconds = 0.0;
 };
 
-/// Setup-once, step-many skin solver (keeps scratch buffers; the model is kept by reference).
+/// Setup-once, step-many skin solver (keeps scratch buffers; the model is kept by reference). The constructor
+/// lays the stretch and bending constraints out colour by colour in flat arrays (vertex indices, rest data),
+/// so each Gauss-Seidel pass over a colour streams through contiguous memory.
 class SkinSimulation {
  public:
   explicit SkinSimulation(const SkinModel& model);
@@ -137,9 +152,17 @@ class SkinSimulation {
 
  private:
   const SkinModel& m_model;
-  std::vector<Vec3> m_tracking_points, m_frame_velocities, m_face_normals, m_predicted, m_plane_points, m_plane_normals;
-  std::vector<double> m_tracking_stiffness, m_edge_stiffness, m_edge_rest_length, m_pair_stiffness, m_attach_radius;
-  std::vector<std::uint8_t> m_outward, m_has_plane;
+  std::vector<Vec3> m_tracking_points, m_anchors, m_frame_velocities, m_face_normals, m_predicted, m_plane_points,
+      m_plane_normals;
+  std::vector<double> m_tracking_stiffness, m_tracking_pass_stiffness, m_edge_stiffness, m_edge_rest_length,
+      m_pair_stiffness, m_attach_radius;
+  std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
+  // Constraints in colour order: slot s of colour c lies in [offsets[c], offsets[c + 1]).
+  std::vector<std::size_t> m_stretch_offsets, m_bending_offsets;
+  std::vector<std::array<std::uint32_t, 2>> m_stretch_vertices;  ///< per slot
+  std::vector<double> m_stretch_rest;                            ///< per slot, model rest length
+  std::vector<std::array<std::uint32_t, 4>> m_bending_vertices;  ///< per slot
+  std::vector<double> m_bending_rest;                            ///< per slot, rest angle
 };
 
 /// Moisture ratio of every skin vertex: the node moisture interpolated at the tracking point (the

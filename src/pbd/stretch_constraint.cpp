@@ -9,20 +9,6 @@ double stretch_value(const Vec3& p0, const Vec3& p1, double rest_length) {
   return (p0 - p1).norm() - rest_length;
 }
 
-PairCorrection project_stretch(const Vec3& p0, const Vec3& p1, double w0, double w1, double rest_length,
-                               double stiffness) {
-  PairCorrection out;
-  const double w = w0 + w1;
-  const Vec3 d = p0 - p1;
-  const double length = d.norm();
-  if (w <= 0.0 || length <= 0.0) return out;
-  const Vec3 n = d / length;
-  const double s = stiffness * (length - rest_length) / w;
-  out.dp0 = -w0 * s * n;
-  out.dp1 = w1 * s * n;
-  return out;
-}
-
 StretchConstraints make_stretch_constraints(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
                                             const std::string& source) {
   for (std::size_t t = 0; t < triangles.size(); ++t)

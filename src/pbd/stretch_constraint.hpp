@@ -24,8 +24,8 @@ double stretch_value(const Vec3& p0, const Vec3& p1, double rest_length);
 /// dp0 = -w0 / (w0 + w1) k C n, dp1 = +w1 / (w0 + w1) k C n. `w0`, `w1` are inverse masses (>= 0), `stiffness`
 /// k in [0, 1] (1 satisfies the constraint in one projection). Zero corrections when both particles are fixed
 /// or coincide. m0 dp0 + m1 dp1 = 0: the projection conserves linear momentum.
-PairCorrection project_stretch(const Vec3& p0, const Vec3& p1, double w0, double w1, double rest_length,
-                               double stiffness);
+inline PairCorrection project_stretch(const Vec3& p0, const Vec3& p1, double w0, double w1, double rest_length,
+                                      double stiffness);
 
 /// Stretch constraints of every unique edge of a triangle mesh (Model data, #E entries each).
 struct StretchConstraints {
@@ -38,5 +38,19 @@ struct StretchConstraints {
 /// `source` for an index out of range or a zero-length edge.
 StretchConstraints make_stretch_constraints(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
                                             const std::string& source);
+
+inline PairCorrection project_stretch(const Vec3& p0, const Vec3& p1, double w0, double w1, double rest_length,
+                                      double stiffness) {
+  PairCorrection out;
+  const double w = w0 + w1;
+  const Vec3 d = p0 - p1;
+  const double length = d.norm();
+  if (w <= 0.0 || length <= 0.0) return out;
+  const Vec3 n = d / length;
+  const double s = stiffness * (length - rest_length) / w;
+  out.dp0 = -w0 * s * n;
+  out.dp1 = w1 * s * n;
+  return out;
+}
 
 }  // namespace forensim
