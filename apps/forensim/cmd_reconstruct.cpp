@@ -90,8 +90,6 @@ std::string table_name(const std::string& name) {
 }
 
 int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
-  Stopwatch total, watch;
-  Timings timings;
   // 1. The job: the command line's values, overridden by a job file where it gives them, and the command line
   // again where an option was typed explicitly.
   ReconstructJob cli_job = a.job;
@@ -134,6 +132,20 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
     guides_record = doc.resolved()["guides"];
   }
 
+  const nlohmann::json facts = run_reconstruction(job, a.out, doc.resolved(), guides_record);
+  std::printf("wrote %s (%d landmark pairs + %d interpolated; skull/skin violations %d -> %d; %s)\n", a.out.c_str(),
+              facts["given_pairs"].get<int>(), facts["interpolated_pairs"].get<int>(),
+              facts["violations_before"].get<int>(), facts["violations_after"].get<int>(),
+              format_seconds(facts["seconds_total"].get<double>()).c_str());
+  return 0;
+}
+
+}  // namespace
+
+nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
+                                  const nlohmann::json& resolved_job, const nlohmann::json& guides_record) {
+  Stopwatch total, watch;
+  Timings timings;
   // 2. Table and depths (cheap, checked first).
   const TissueDepthTable table = tissue_depth_table(table_name(job.table));
   TissueDepthQuery query{job.sex, job.population, ""};
@@ -349,8 +361,8 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (guided) violations["after_guides"] = violations_json(final_violations);
 
   // 7. Outputs.
-  RunFolder run(a.out, "reconstruct");
-  run.set_job(doc.resolved());
+  RunFolder run(out, "reconstruct");
+  run.set_job(resolved_job);
   run.set_seed(job.seed);
   GltfScene scene;
   GltfMeshNode head_node;
@@ -397,11 +409,10 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   run.facts()["violations_after"] = final_violations.total();
   run.facts()["seconds_total"] = total.seconds();
   run.write_record();
-  std::printf("wrote %s (%zu landmark pairs + %zu interpolated; skull/skin violations %zu -> %zu; %s)\n",
-              run.path().string().c_str(), result.given_pair_count, result.targets.size() - result.given_pair_count,
-              result.violations_given_only.total(), final_violations.total(), format_seconds(total.seconds()).c_str());
-  return 0;
+  return run.facts();
 }
+
+namespace {
 
 const RegisterCommand reconstruct_command{
     "reconstruct", [](CLI::App& app) {

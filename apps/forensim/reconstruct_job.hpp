@@ -66,4 +66,12 @@ bool any_guide(const FaceGuides& guides);
 ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
                                     const std::filesystem::path& base);
 
+/// Runs a reconstruction (what `forensim reconstruct` does after reading its job) into the run folder `out`:
+/// every input is read and checked and the head computed before the folder is created. `resolved_job` is
+/// stored in run.json, `guides_record` (the guides as given, or null) in provenance.json. Returns the run's
+/// facts (given_pairs, interpolated_pairs, violations_before, violations_after, seconds_total). Throws the
+/// library's errors (InputError, IoError, JobError, NumericError).
+nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
+                                  const nlohmann::json& resolved_job, const nlohmann::json& guides_record);
+
 }  // namespace forensim::cli
