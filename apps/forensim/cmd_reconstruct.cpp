@@ -1,0 +1,457 @@
+// forensim reconstruct: rebuilds a face from a skull (Kähler, Haber and Seidel 2003): skull landmarks with
+// tissue-depth vectors from a published table, the RBF warp of the template head onto their skin points (with
+// interpolated cranium and mandible pairs), the nose and mouth guides, and the outputs: the head (textured GLB
+// and OBJ) with the skull, skull and skin landmarks (.mrk.json), pictures of the skin over the skull with the
+// depth vectors, the skull/skin violations, and a provenance record. Everything is computed before the output
+// folder is created, so bad input writes nothing.
+
+#include <cstdio>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "core/error.hpp"
+#include "core/job.hpp"
+#include "core/run_folder.hpp"
+#include "core/timer.hpp"
+#include "craniofacial/face_guides.hpp"
+#include "craniofacial/fit_template.hpp"
+#include "craniofacial/landmark_io.hpp"
+#include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/skull_input.hpp"
+#include "craniofacial/skull_normals.hpp"
+#include "craniofacial/template_head.hpp"
+#include "craniofacial/tissue_depth_table.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "image/png_io.hpp"
+#include "mesh_io/gltf_writer.hpp"
+#include "mesh_io/obj_writer.hpp"
+#include "phantoms/ct_head_phantom.hpp"
+#include "phantoms/skin_maps.hpp"
+#include "pictures.hpp"
+#include "reconstruct_job.hpp"
+#include "render/renderer.hpp"
+#include "render/sheet.hpp"
+
+namespace forensim::cli {
+namespace {
+
+struct ReconstructArgs {
+  ReconstructJob job;
+  std::string job_file;
+  std::string guides_file;
+  std::string out;
+  bool no_interpolated = false;
+};
+
+nlohmann::json vec_json(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
+nlohmann::json violations_json(const SkullSkinViolations& v) {
+  return {{"skull_vertices", v.skull_vertex_count},
+          {"skin_vertices", v.skin_vertex_count},
+          {"skull_outside_skin", v.skull_outside_skin},
+          {"skin_inside_skull", v.skin_inside_skull},
+          {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
+          {"max_skin_intrusion_mm", v.max_skin_intrusion_mm}};
+}
+
+TemplateHeadOptions template_options(const std::string& detail) {
+  TemplateHeadOptions o;
+  if (detail == "coarse") {
+    o.skin_voxel_mm = 3.0;
+    o.skin_edge_mm = 6.0;
+    o.skull_voxel_mm = 3.0;
+    o.remesh_iterations = 2;
+    o.uv_resolution = 512;
+  }
+  return o;
+}
+
+// The template's own skull landmarks as a set, named by the vocabulary's bone landmark of each skin landmark
+// (the template writes the upper and lower second-molar points both "ecm2"; the vocabulary keeps ecm2i apart).
+LandmarkSet template_skull_landmarks(const TemplateHead& head) {
+  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
+  LandmarkSet set("template skull");
+  for (const TemplateLandmarkPair& p : head.landmarks) {
+    const LandmarkRef skin = vocabulary.resolve(p.skin_name, "template head", p.skin_name);
+    const auto bone = vocabulary.paired(skin);
+    const std::string name = bone ? vocabulary.name(*bone) : p.bone_name;
+    if (set.contains(name)) continue;
+    set.add({name, p.skull, LandmarkSource::detected, 1.0});
+  }
+  return set;
+}
+
+std::string table_name(const std::string& name) {
+  if (name == "rhine_1983") return "rhine_1983_sw_native_american_female_normal";
+  return name;
+}
+
+int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
+  // 1. The job: the command line's values, overridden by a job file where it gives them, and the command line
+  // again where an option was typed explicitly.
+  ReconstructJob cli_job = a.job;
+  std::filesystem::path base;
+  JobDocument doc = JobDocument::empty("command line");
+  if (!a.job_file.empty()) {
+    doc = JobDocument::load(a.job_file);
+    base = std::filesystem::path(a.job_file).parent_path();
+  }
+  ReconstructJob job = read_reconstruct_job(doc.root(), cli_job, base);
+  doc.check_all_used();
+  auto typed = [&](const char* option) { return sub.count(option) > 0; };
+  if (typed("--skull")) job.skull = cli_job.skull;
+  if (typed("--ct")) job.ct = cli_job.ct;
+  if (typed("--unit")) job.unit = cli_job.unit;
+  if (typed("--mesh-scale")) job.mesh_scale = cli_job.mesh_scale;
+  if (typed("--bone-iso")) job.bone_iso = cli_job.bone_iso;
+  if (typed("--landmarks")) job.landmarks = cli_job.landmarks;
+  if (typed("--table")) job.table = cli_job.table;
+  if (typed("--sex")) job.sex = cli_job.sex;
+  if (typed("--population")) job.population = cli_job.population;
+  if (typed("--build")) job.build = cli_job.build;
+  if (typed("--build-sd")) job.build_sd = cli_job.build_sd;
+  if (typed("--seed")) job.seed = cli_job.seed;
+  if (typed("--template-detail")) job.template_detail = cli_job.template_detail;
+  if (typed("--axes")) job.axes = cli_job.axes;
+  if (typed("--texture-size")) job.texture_size = cli_job.texture_size;
+  if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
+  if (typed("--samples")) job.samples = cli_job.samples;
+  if (a.no_interpolated) job.interpolated_landmarks = false;
+  nlohmann::json guides_record = nullptr;
+  if (!a.guides_file.empty()) {
+    JobDocument guides_doc = JobDocument::load(a.guides_file);
+    job.guides = read_face_guides(guides_doc.root());
+    guides_doc.check_all_used();
+    job.has_guides = any_guide(job.guides);
+    guides_record = guides_doc.resolved();
+    guides_record["file"] = a.guides_file;
+  } else if (doc.resolved().contains("guides")) {
+    guides_record = doc.resolved()["guides"];
+  }
+
+  const nlohmann::json facts = run_reconstruction(job, a.out, doc.resolved(), guides_record);
+  std::printf("wrote %s (%d landmark pairs + %d interpolated; skull/skin violations %d -> %d; %s)\n", a.out.c_str(),
+              facts["given_pairs"].get<int>(), facts["interpolated_pairs"].get<int>(),
+              facts["violations_before"].get<int>(), facts["violations_after"].get<int>(),
+              format_seconds(facts["seconds_total"].get<double>()).c_str());
+  return 0;
+}
+
+}  // namespace
+
+nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
+                                  const nlohmann::json& resolved_job, const nlohmann::json& guides_record) {
+  Stopwatch total, watch;
+  Timings timings;
+  // 2. Table and depths (cheap, checked first).
+  const TissueDepthTable table = tissue_depth_table(table_name(job.table));
+  TissueDepthQuery query{job.sex, job.population, ""};
+  TissueDepths depths;
+  std::string build_method;
+  if (job.build.empty()) {
+    depths = select_tissue_depths(table, query);
+  } else {
+    const BuildVariants variants = build_variants(table, query, job.build_sd);
+    depths = job.build == "slender" ? variants.slender : job.build == "obese" ? variants.obese : variants.normal;
+    build_method = variants.method;
+  }
+
+  // 3. Skull and landmarks (files are read before the template is built, so their errors come quickly).
+  const bool builtin_skull = job.ct.empty() && job.skull == "builtin";
+  const bool phantom_ct = job.ct == "phantom";
+  std::string landmark_mode = job.landmarks;
+  if (landmark_mode.empty()) {
+    if (!builtin_skull && !phantom_ct) {
+      throw InputError("--landmarks", "",
+                       "a skull other than the built-in one needs its landmarks: give a .mrk.json or CSV file "
+                       "(automatic landmark detection is not available yet)");
+    }
+    landmark_mode = "template";
+  }
+  if (landmark_mode == "auto") {
+    if (!builtin_skull && !phantom_ct) {
+      throw InputError("--landmarks", "auto",
+                       "automatic landmark detection is not available yet; give the skull's landmarks as a "
+                       ".mrk.json or CSV file (only the built-in skull carries its own)");
+    }
+    landmark_mode = "template";
+  }
+  std::optional<LandmarkSet> file_landmarks;
+  if (landmark_mode != "template") file_landmarks = read_landmarks(landmark_mode);
+  timings.add("inputs", watch.lap());
+
+  const TemplateHead head = make_template_head(template_options(job.template_detail));
+  timings.add("template", watch.lap());
+
+  Skull skull;
+  SkullInputOptions skull_options;
+  skull_options.mesh_units.unit = job.unit;
+  skull_options.mesh_units.scale = job.mesh_scale;
+  skull_options.bone_iso_value = job.bone_iso;
+  if (builtin_skull) {
+    skull.mesh = head.skull;
+    skull.source = "built-in template skull (head phantom)";
+    skull.kind = "builtin";
+  } else if (phantom_ct) {
+    skull = skull_from_volume(make_ct_head_phantom(), "built-in CT head phantom", skull_options);
+  } else {
+    skull = load_skull(job.ct.empty() ? job.skull : job.ct, skull_options);
+  }
+  timings.add("skull", watch.lap());
+  const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks : template_skull_landmarks(head);
+  const std::string landmark_origin =
+      file_landmarks ? "file " + landmark_mode : "the template's skull landmarks (placed by their definitions)";
+
+  // 4. Depth vectors and the fit.
+  const SkullSurface surface(skull.mesh);
+  const DepthVectors vectors = depth_vectors(surface, skull_landmarks_in, depths);
+  LandmarkDepths given;
+  std::vector<std::string> not_on_template;
+  std::vector<bool> used(vectors.vectors.size(), false);
+  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
+    const DepthVector& v = vectors.vectors[i];
+    if (find_template_landmark(head, v.skin_landmark) < 0) {
+      not_on_template.push_back(v.bone_landmark);
+      continue;
+    }
+    used[i] = true;
+    given.names.push_back(v.skin_landmark);
+    given.skull.push_back(v.bone_mm);
+    given.depth_vectors.push_back(v.direction * v.depth_mm);
+  }
+  timings.add("depth vectors", watch.lap());
+  FitTemplateOptions fit_options;
+  fit_options.interpolated_landmarks = job.interpolated_landmarks;
+  const TemplateFit fit(head, skull.mesh, given, fit_options);
+  const TemplateFitResult& result = fit.result();
+  timings.add("fit", watch.lap());
+  TriMesh final_skin = result.skin;
+  std::vector<TemplateSkinLandmark> skin_only = result.skin_landmarks;
+  std::optional<GuidedHead> guided;
+  SkullSkinViolations final_violations = result.violations;
+  if (job.has_guides) {
+    guided = apply_face_guides(head, result, job.guides);
+    final_skin = guided->skin;
+    skin_only = guided->skin_landmarks;
+    final_violations = count_skull_skin_violations(skull.mesh, final_skin);
+    timings.add("guides", watch.lap());
+  }
+
+  // 5. Landmark sets, maps, pictures: all in memory.
+  LandmarkSet skull_set("skull"), skin_set("skin");
+  for (const DepthVector& v : vectors.vectors) skull_set.add({v.bone_landmark, v.bone_mm, v.source, v.confidence});
+  const LandmarkSet targets = skin_landmarks(vectors);
+  for (const Landmark& l : targets.landmarks()) skin_set.add(l);
+  for (const TemplateSkinLandmark& l : skin_only)
+    if (!skin_set.contains(l.name)) skin_set.add({l.name, l.position, LandmarkSource::detected, 1.0});
+
+  std::shared_ptr<Image> epidermis, normal_map;
+  final_skin.material.name = "skin";
+  if (job.texture_size > 0 && head.skin.has_uvs()) {
+    // The maps are baked on the template's rest shape; the warp keeps the UVs, so they follow the face.
+    SkinMaps maps = make_skin_maps(head.skin, job.texture_size, job.seed);
+    epidermis = std::make_shared<Image>(std::move(maps.epidermis));
+    normal_map = std::make_shared<Image>(std::move(maps.normal));
+    timings.add("skin maps", watch.lap());
+  }
+  const ViewAxes axes = axes_from_name(job.axes);
+  std::vector<std::pair<std::string, std::string>> pictures;  // file, PNG bytes
+  if (job.picture_size > 0) {
+    RenderSettings settings;
+    settings.width = settings.height = job.picture_size;
+    settings.samples_per_pixel = job.samples;
+    settings.seed = job.seed;
+    auto skin_ptr = std::make_shared<const TriMesh>(final_skin);
+    auto skull_ptr = std::make_shared<const TriMesh>(skull.mesh);
+    Scene overlay = skin_over_bone_scene(skin_ptr, skull_ptr, 0.35, axes);
+    for (const DepthVector& v : vectors.vectors) {
+      LineOverlay line;
+      line.from = v.bone_mm;
+      line.to = v.skin_mm;
+      overlay.lines.push_back(line);
+      PointOverlay dot;
+      dot.position = v.bone_mm;
+      dot.radius_px = 2.5;
+      overlay.points.push_back(dot);
+    }
+    std::vector<SheetCell> cells;
+    for (const auto& [view, caption] : std::vector<std::pair<std::string, std::string>>{
+             {"front", "front"}, {"left", "side"}, {"three_quarter", "three-quarter"}}) {
+      Image image = render_view(overlay, settings, view, axes);
+      pictures.emplace_back("render_" + (view == "left" ? std::string("side") : view) + ".png", encode_png(image));
+      cells.push_back({std::move(image), caption});
+    }
+    Scene face;
+    face.environment.up = axes.up;
+    SurfaceMaterial material = SurfaceMaterial::skin();
+    if (epidermis) {
+      material.colour_source = ColourSource::texture;
+      material.base_colour = Vec3f(1, 1, 1);
+      material.base_texture = epidermis;
+      material.normal_map = normal_map;
+    }
+    face.add(skin_ptr, material, "skin");
+    Image textured = render_view(face, settings, "three_quarter", axes);
+    pictures.emplace_back("render_textured.png", encode_png(textured));
+    cells.push_back({std::move(textured), "reconstructed head"});
+    pictures.emplace_back("reconstruction.png", encode_png(make_sheet(cells, 4, "forensim reconstruct")));
+    timings.add("renders", watch.lap());
+  }
+
+  // 6. Provenance.
+  nlohmann::json provenance;
+  provenance["template"] = {{"name", "built-in head phantom template"},
+                            {"detail", job.template_detail},
+                            {"skin_triangles", head.skin.triangle_count()},
+                            {"landmark_pairs", head.landmarks.size()},
+                            {"muscles", head.muscles.size()},
+                            {"uv_atlas", head.skin.has_uvs()}};
+  provenance["skull"] = {{"source", skull.source},
+                         {"kind", skull.kind.empty() ? "mesh" : skull.kind},
+                         {"triangles", skull.mesh.triangle_count()},
+                         {"notes", skull.notes}};
+  if (skull.iso_value) provenance["skull"]["bone_iso"] = *skull.iso_value;
+  provenance["table"] = {{"name", table.name},
+                         {"origin", table.origin},
+                         {"source", table.comments},
+                         {"group", depths.group.describe()},
+                         {"variant", depths.variant},
+                         {"notes", depths.notes},
+                         {"build", job.build.empty() ? "as the group" : job.build}};
+  if (!build_method.empty()) provenance["table"]["build_method"] = build_method;
+  nlohmann::json items = nlohmann::json::array();
+  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
+    const DepthVector& v = vectors.vectors[i];
+    items.push_back({{"name", v.bone_landmark},
+                     {"skin_landmark", v.skin_landmark},
+                     {"source", to_string(v.source)},
+                     {"confidence", v.confidence},
+                     {"skull_mm", vec_json(v.bone_mm)},
+                     {"direction", vec_json(v.direction)},
+                     {"depth_mm", v.depth_mm},
+                     {"depth_source", v.depth_source},
+                     {"skin_mm", vec_json(v.skin_mm)},
+                     {"surface_offset_mm", v.surface_offset_mm},
+                     {"used_in_warp", static_cast<bool>(used[i])}});
+  }
+  provenance["landmarks"] = {{"origin", landmark_origin},
+                             {"items", items},
+                             {"missing_depth", vectors.missing},
+                             {"unpaired", vectors.unpaired},
+                             {"not_on_template", not_on_template},
+                             {"given_pairs", result.given_pair_count},
+                             {"interpolated_pairs", result.targets.size() - result.given_pair_count},
+                             {"max_landmark_residual_mm", result.max_landmark_residual_mm}};
+  provenance["guides"] = guides_record;
+  if (guided) {
+    nlohmann::json adjusted = nlohmann::json::array();
+    for (std::size_t i = 0; i < guided->adjusted.size(); ++i) {
+      adjusted.push_back({{"name", guided->adjusted[i]},
+                          {"from_mm", vec_json(guided->adjusted_from[i])},
+                          {"to_mm", vec_json(guided->adjusted_to[i])}});
+    }
+    provenance["guides_adjusted"] = adjusted;
+  }
+  provenance["seed"] = job.seed;
+  nlohmann::json violations = {{"given_pairs_only", violations_json(result.violations_given_only)},
+                               {"with_interpolated_landmarks", violations_json(result.violations)}};
+  if (guided) violations["after_guides"] = violations_json(final_violations);
+
+  // 7. Outputs.
+  RunFolder run(out, "reconstruct");
+  run.set_job(resolved_job);
+  run.set_seed(job.seed);
+  GltfScene scene;
+  GltfMeshNode head_node;
+  head_node.name = "head";
+  head_node.mesh = final_skin;
+  if (epidermis) {
+    head_node.textures.base_color_png = encode_png(*epidermis);
+    head_node.textures.normal_png = encode_png(*normal_map);
+  }
+  scene.nodes.push_back(std::move(head_node));
+  GltfMeshNode skull_node;
+  skull_node.name = "skull";
+  skull_node.mesh = skull.mesh;
+  skull_node.mesh.material.name = "bone";
+  skull_node.mesh.material.base_color = Vec4f(0.85f, 0.8f, 0.7f, 1.0f);
+  scene.nodes.push_back(std::move(skull_node));
+  write_gltf(run.file("head.glb"), scene);
+  run.add_output("head.glb");
+  TriMesh obj_skin = final_skin;
+  if (epidermis) {
+    run.write("head_epidermis.png", encode_png(*epidermis));
+    run.write("head_normal.png", encode_png(*normal_map));
+    obj_skin.material.base_color_texture = "head_epidermis.png";
+    obj_skin.material.normal_texture = "head_normal.png";
+  }
+  write_obj(run.file("head.obj"), obj_skin);
+  run.add_output("head.obj");
+  run.add_output("head.mtl");
+  write_obj(run.file("skull.obj"), skull.mesh);
+  run.add_output("skull.obj");
+  run.add_output("skull.mtl");
+  write_landmarks(run.file("skull_landmarks.mrk.json"), skull_set);
+  run.add_output("skull_landmarks.mrk.json");
+  write_landmarks(run.file("skin_landmarks.mrk.json"), skin_set);
+  run.add_output("skin_landmarks.mrk.json");
+  for (const auto& [file, bytes] : pictures) run.write(file, bytes);
+  run.write("violations.json", violations.dump(2));
+  run.write("provenance.json", provenance.dump(2));
+  timings.add("write", watch.lap());
+  for (const auto& [stage, seconds] : timings.stages()) run.timings().add(stage, seconds);
+  run.facts()["given_pairs"] = result.given_pair_count;
+  run.facts()["interpolated_pairs"] = result.targets.size() - result.given_pair_count;
+  run.facts()["violations_before"] = result.violations_given_only.total();
+  run.facts()["violations_after"] = final_violations.total();
+  run.facts()["seconds_total"] = total.seconds();
+  run.write_record();
+  return run.facts();
+}
+
+namespace {
+
+const RegisterCommand reconstruct_command{
+    "reconstruct", [](CLI::App& app) {
+      auto* sub = app.add_subcommand("reconstruct", "Rebuild a face from a skull (template head, tissue depths)");
+      auto a = std::make_shared<ReconstructArgs>();
+      ReconstructJob& j = a->job;
+      sub->add_option("-o,--out", a->out, "Output folder")->required();
+      sub->add_option("--job", a->job_file, "Job file (JSON); options typed on the command line override it");
+      sub->add_option("--skull", j.skull, "Skull mesh file (any format Assimp reads) or volume; default: built-in");
+      sub->add_option("--ct", j.ct, "CT volume to take the skull from (bone iso-surface), or 'phantom'");
+      sub->add_option("--unit", j.unit, "Unit of a mesh skull: auto, m, cm, mm or in")
+          ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in"}));
+      sub->add_option("--mesh-scale", j.mesh_scale, "Millimetres per mesh unit (overrides --unit)")
+          ->check(CLI::Range(0.0, 1e6));
+      sub->add_option("--bone-iso", j.bone_iso, "CT bone iso-value in stored units (default 1150 = 126 HU)");
+      sub->add_option("--landmarks", j.landmarks,
+                      "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto'");
+      sub->add_option("--table", j.table, "Tissue-depth table: ttable_2023, rhine_1983 or a CSV file");
+      sub->add_option("--sex", j.sex, "Group of the table: female, male or pooled")
+          ->check(CLI::IsMember({"female", "male", "pooled"}));
+      sub->add_option("--population", j.population, "Population group of the table");
+      sub->add_option("--build", j.build, "slender, normal or obese (table groups or mean -/+ SD)")
+          ->check(CLI::IsMember({"slender", "normal", "obese"}));
+      sub->add_option("--build-sd", j.build_sd, "SDs of the build variants when the table has no build groups")
+          ->check(CLI::Range(0.1, 3.0));
+      sub->add_option("--guides", a->guides_file, "Nose and mouth guide values (JSON, FaceGuides fields)");
+      sub->add_flag("--no-interpolated", a->no_interpolated,
+                    "Leave out the interpolated cranium and mandible landmarks");
+      sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
+          ->check(CLI::IsMember({"full", "coarse"}));
+      sub->add_option("--axes", j.axes, "Frame of the skull for the pictures: lps or yup")
+          ->check(CLI::IsMember({"lps", "yup"}));
+      sub->add_option("--seed", j.seed, "Seed of the procedural skin maps");
+      sub->add_option("--texture-size", j.texture_size, "Skin map resolution (0 = none)")->check(CLI::Range(0, 8192));
+      sub->add_option("--picture-size", j.picture_size, "Pixels per rendered view (0 = no renders)")
+          ->check(CLI::Range(0, 4096));
+      sub->add_option("--samples", j.samples, "Samples per pixel of the renders")->check(CLI::Range(1, 256));
+      return [a, sub]() { return run_reconstruct(*a, *sub); };
+    }};
+
+}  // namespace
+}  // namespace forensim::cli

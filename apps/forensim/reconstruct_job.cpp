@@ -1,0 +1,102 @@
+#include "reconstruct_job.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace forensim::cli {
+namespace {
+
+constexpr double kBig = 1e6;  // mm: any guide coordinate beyond a kilometre is a mistake
+
+std::optional<double> optional_number(const JobNode& node, const std::string& key) {
+  if (!node.has(key)) return std::nullopt;
+  return node.get_number(key, 0.0, -kBig, kBig);
+}
+
+std::optional<Vec3> optional_vector(const JobNode& node, const std::string& key) {
+  if (!node.has(key)) return std::nullopt;
+  const auto values = node.require<std::vector<double>>(key);
+  if (values.size() != 3) node.fail(key, "expected [x, y, z], got " + std::to_string(values.size()) + " numbers");
+  for (double v : values)
+    if (!std::isfinite(v) || std::abs(v) > kBig) node.fail(key, "coordinates must be finite numbers (mm)");
+  return Vec3(values[0], values[1], values[2]);
+}
+
+std::string resolve_path(const std::string& value, const std::filesystem::path& base) {
+  if (value.empty() || base.empty()) return value;
+  const std::filesystem::path p(value);
+  return p.is_absolute() ? value : (base / p).string();
+}
+
+// A path key: resolved against the job file's folder when the job gives it (command-line values stay as typed).
+std::string path_value(const JobNode& root, const std::string& key, const std::string& fallback,
+                       const std::filesystem::path& base, const std::vector<std::string>& words) {
+  const bool given = root.has(key);
+  const std::string value = root.get<std::string>(key, fallback);
+  if (!given) return value;
+  for (const auto& w : words)
+    if (value == w) return value;
+  return resolve_path(value, base);
+}
+
+}  // namespace
+
+FaceGuides read_face_guides(const JobNode& node) {
+  FaceGuides g;
+  if (auto v = optional_vector(node, "lateral")) g.lateral = *v;
+  if (auto v = optional_vector(node, "up")) g.up = *v;
+  g.nasal_aperture_left_mm = optional_number(node, "nasal_aperture_left_mm");
+  g.nasal_aperture_right_mm = optional_number(node, "nasal_aperture_right_mm");
+  g.alar_offset_mm = node.get_number("alar_offset_mm", g.alar_offset_mm, 0.0, 50.0);
+  g.nasal_spine_base = optional_vector(node, "nasal_spine_base");
+  g.nasal_spine_tip = optional_vector(node, "nasal_spine_tip");
+  g.krogman_factor = node.get_number("krogman_factor", g.krogman_factor, 0.0, 20.0);
+  g.mouth_corner_left_mm = optional_number(node, "mouth_corner_left_mm");
+  g.mouth_corner_right_mm = optional_number(node, "mouth_corner_right_mm");
+  g.upper_lip_border_mm = optional_number(node, "upper_lip_border_mm");
+  g.lower_lip_border_mm = optional_number(node, "lower_lip_border_mm");
+  g.lip_parting_mm = optional_number(node, "lip_parting_mm");
+  return g;
+}
+
+bool any_guide(const FaceGuides& g) {
+  return g.nasal_aperture_left_mm || g.nasal_aperture_right_mm || g.nasal_spine_base || g.nasal_spine_tip ||
+         g.mouth_corner_left_mm || g.mouth_corner_right_mm || g.upper_lip_border_mm || g.lower_lip_border_mm ||
+         g.lip_parting_mm;
+}
+
+ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
+                                    const std::filesystem::path& base) {
+  ReconstructJob j = defaults;
+  root.get_integer("version", 1, 1, 1);
+  j.skull = path_value(root, "skull", defaults.skull, base, {"builtin"});
+  j.ct = path_value(root, "ct", defaults.ct, base, {"phantom"});
+  j.unit = root.get_choice("unit", defaults.unit, {"auto", "m", "cm", "mm", "in"});
+  j.mesh_scale = root.get_number("mesh_scale", defaults.mesh_scale, 0.0, 1e6);
+  if (root.has("bone_iso")) {
+    j.bone_iso = root.get_number("bone_iso", 0.0, -1e6, 1e6);
+  }
+  j.landmarks = path_value(root, "landmarks", defaults.landmarks, base, {"template", "auto"});
+  j.table = path_value(root, "table", defaults.table, base, {"ttable_2023", "rhine_1983"});
+  j.sex = root.get_choice("sex", defaults.sex, {"", "female", "male", "pooled"});
+  j.population = root.get<std::string>("population", defaults.population);
+  j.build = root.get_choice("build", defaults.build, {"", "slender", "normal", "obese"});
+  j.build_sd = root.get_number("build_sd", defaults.build_sd, 0.1, 3.0);
+  if (root.has("guides")) {
+    j.guides = read_face_guides(root.child("guides"));
+    j.has_guides = any_guide(j.guides);
+  }
+  j.interpolated_landmarks = root.get<bool>("interpolated_landmarks", defaults.interpolated_landmarks);
+  j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
+  j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup"});
+  j.seed = static_cast<std::uint64_t>(
+      root.get_integer("seed", static_cast<long long>(defaults.seed), 0, std::numeric_limits<long long>::max()));
+  j.texture_size = static_cast<int>(root.get_integer("texture_size", defaults.texture_size, 0, 8192));
+  if (j.texture_size != 0 && j.texture_size < 16) root.fail("texture_size", "must be 0 (no maps) or at least 16");
+  j.picture_size = static_cast<int>(root.get_integer("picture_size", defaults.picture_size, 0, 4096));
+  j.samples = static_cast<int>(root.get_integer("samples", defaults.samples, 1, 256));
+  return j;
+}
+
+}  // namespace forensim::cli

@@ -1,0 +1,77 @@
+#pragma once
+/// The description of a `forensim reconstruct` run, read from a job file (JSON, version 1) or from the
+/// command line through the one job loader (core/job.hpp), so a misspelt key is an error naming it.
+///
+/// Job keys (all optional):
+///   version          1
+///   skull            "builtin" (the template's own skull), a mesh file, or a CT volume (is_volume_path)
+///   ct               a CT volume, or "phantom" (the built-in CT of the head phantom); replaces `skull`
+///   unit, mesh_scale units of a mesh skull (auto, m, cm, mm, in; millimetres per unit)
+///   bone_iso         CT bone iso-value (stored values; default 1150, i.e. 126 HU stored as HU + 1024)
+///   landmarks        skull landmarks: a .mrk.json or .csv file, "template" (the template's skull landmarks,
+///                    for skulls in the template's frame) or "auto" (detection; not available yet)
+///   table            "ttable_2023" (default), "rhine_1983" or a CSV table file
+///   sex, population  group of the table ("" = any; pooled values stand in, with a note)
+///   build            "" (the group's own values), slender, normal or obese (the table's build groups, or
+///                    mean -/+ build_sd SDs)
+///   build_sd         k of the build variants (default 1)
+///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
+///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
+///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
+///   axes             "lps" (default) or "yup": the skull's frame, for the pictures
+///   seed             seed of the procedural skin maps
+///   texture_size     skin map resolution (0 = no maps)
+///   picture_size, samples  renders (picture_size 0 = no renders)
+/// Relative paths in a job file are taken from the job file's folder.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/job.hpp"
+#include "craniofacial/face_guides.hpp"
+
+namespace forensim::cli {
+
+struct ReconstructJob {
+  std::string skull = "builtin";
+  std::string ct;
+  std::string unit = "auto";
+  double mesh_scale = 0.0;
+  std::optional<double> bone_iso;
+  std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else required
+  std::string table = "ttable_2023";
+  std::string sex, population, build;
+  double build_sd = 1.0;
+  FaceGuides guides;
+  bool has_guides = false;
+  bool interpolated_landmarks = true;
+  std::string template_detail = "full";
+  std::string axes = "lps";
+  std::uint64_t seed = 1;
+  int texture_size = 1024;
+  int picture_size = 512;
+  int samples = 4;
+};
+
+/// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError
+/// naming the key for wrong types, vectors that are not three finite numbers and values out of range.
+FaceGuides read_face_guides(const JobNode& node);
+/// True when at least one guide value is given in `guides`.
+bool any_guide(const FaceGuides& guides);
+
+/// Reads a reconstruction job; `defaults` supplies every value the job leaves out (the command line's).
+/// `base` is the folder relative paths are resolved against (empty: as given). Throws JobError.
+ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
+                                    const std::filesystem::path& base);
+
+/// Runs a reconstruction (what `forensim reconstruct` does after reading its job) into the run folder `out`:
+/// every input is read and checked and the head computed before the folder is created. `resolved_job` is
+/// stored in run.json, `guides_record` (the guides as given, or null) in provenance.json. Returns the run's
+/// facts (given_pairs, interpolated_pairs, violations_before, violations_after, seconds_total). Throws the
+/// library's errors (InputError, IoError, JobError, NumericError).
+nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
+                                  const nlohmann::json& resolved_job, const nlohmann::json& guides_record);
+
+}  // namespace forensim::cli

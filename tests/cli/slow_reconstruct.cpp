@@ -1,0 +1,132 @@
+// End-to-end runs of `forensim reconstruct`: the built-in skull on defaults writes every output, its landmark
+// files read back to the positions the provenance records, the skin landmarks lie at skull + depth along the
+// recorded directions; the CT head phantom's skull with those landmarks given in RAS through a job file (with
+// a build variant from the table's SDs); and the real CT, which has no landmarks file.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "cli/cli_runner.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "craniofacial/landmark_io.hpp"
+#include "craniofacial/tissue_depth_table.hpp"
+#include "support/test_support.hpp"
+
+using namespace forensim;
+using test::run_cli;
+
+namespace {
+
+const char* kSmall = "reconstruct --template-detail coarse --texture-size 128 --samples 1 ";
+
+Vec3 vec(const nlohmann::json& j) {
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+// The built-in run, shared by the tests below (one template build).
+const std::filesystem::path& builtin_run() {
+  static const std::filesystem::path out = [] {
+    const auto dir = test::scratch_dir("reconstruct_slow_builtin") / "run";
+    const auto r = run_cli(std::string(kSmall) + "--picture-size 96 -o " + dir.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return dir;
+  }();
+  return out;
+}
+
+}  // namespace
+
+TEST(SlowReconstructCli, DefaultsWriteEveryOutput) {
+  const auto& out = builtin_run();
+  for (const char* f : {"head.glb", "head.obj", "head.mtl", "head_epidermis.png", "head_normal.png", "skull.obj",
+                        "skull_landmarks.mrk.json", "skin_landmarks.mrk.json", "render_front.png", "render_side.png",
+                        "render_three_quarter.png", "render_textured.png", "reconstruction.png", "violations.json",
+                        "provenance.json", "run.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  }
+  EXPECT_EQ(read_file(out / "head.glb").substr(0, 4), "glTF");
+  // No temporary files left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(out)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  const auto run = nlohmann::json::parse(read_file(out / "run.json"));
+  EXPECT_EQ(run["facts"]["given_pairs"].get<int>(), 36);
+  EXPECT_GT(run["facts"]["interpolated_pairs"].get<int>(), 0);
+  const auto violations = nlohmann::json::parse(read_file(out / "violations.json"));
+  EXPECT_TRUE(violations.contains("given_pairs_only"));
+  EXPECT_TRUE(violations.contains("with_interpolated_landmarks"));
+  std::cout << "built-in skull: " << run["facts"]["seconds_total"] << " s; violations "
+            << run["facts"]["violations_before"] << " -> " << run["facts"]["violations_after"] << "\n";
+}
+
+TEST(SlowReconstructCli, LandmarkFilesReadBackToTheRecordedPositions) {
+  const auto& out = builtin_run();
+  const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
+  const LandmarkSet skull = read_landmarks(out / "skull_landmarks.mrk.json");
+  const LandmarkSet skin = read_landmarks(out / "skin_landmarks.mrk.json");
+  const auto& items = provenance["landmarks"]["items"];
+  ASSERT_EQ(skull.size(), items.size());
+  for (const auto& item : items) {
+    const Landmark& s = skull.at(item["name"].get<std::string>());
+    EXPECT_LT((s.position_mm - vec(item["skull_mm"])).norm(), 1e-6) << s.name;
+    EXPECT_EQ(to_string(s.source), item["source"].get<std::string>());
+    // The skin landmark is skull + depth * direction (the table's depth along the skull normal).
+    const Landmark& q = skin.at(item["skin_landmark"].get<std::string>());
+    const Vec3 expected = vec(item["skull_mm"]) + item["depth_mm"].get<double>() * vec(item["direction"]);
+    EXPECT_LT((q.position_mm - expected).norm(), 1e-6) << q.name;
+    EXPECT_NEAR(vec(item["direction"]).norm(), 1.0, 1e-9);
+    // The depth is the table's for the site.
+    const auto depths = select_tissue_depths(built_in_tissue_depth_table("ttable_2023"));
+    EXPECT_NEAR(item["depth_mm"].get<double>(), *depths.depth_mm(s.name), 1e-12) << s.name;
+  }
+  // The skin-only points of the template (nose, mouth) come along.
+  EXPECT_TRUE(skin.contains("prn'"));
+  EXPECT_GT(skin.size(), skull.size());
+}
+
+TEST(SlowReconstructCli, CtPhantomWithRasLandmarksAndSlenderBuildFromAJobFile) {
+  const auto& builtin = builtin_run();
+  const auto dir = test::scratch_dir("reconstruct_slow_ct");
+  // The built-in skull's landmarks, written in RAS: the command must read them back into LPS.
+  const LandmarkSet skull = read_landmarks(builtin / "skull_landmarks.mrk.json");
+  LandmarkWriteOptions ras;
+  ras.coordinate_system = CoordinateSystem::ras;
+  write_landmarks(dir / "skull_ras.mrk.json", skull, ras);
+  {
+    std::ofstream job(dir / "job.json");
+    job << R"({"version": 1, "ct": "phantom", "landmarks": "skull_ras.mrk.json", "build": "slender",
+               "template_detail": "coarse", "texture_size": 0, "picture_size": 0})";
+  }
+  const auto out = dir / "run";
+  const auto r = run_cli("reconstruct --job " + (dir / "job.json").string() + " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
+  EXPECT_EQ(provenance["skull"]["kind"], "ct");
+  EXPECT_EQ(provenance["table"]["build"], "slender");
+  const auto slender = offset_by_sd(select_tissue_depths(built_in_tissue_depth_table("ttable_2023")), -1.0);
+  for (const auto& item : provenance["landmarks"]["items"]) {
+    const std::string name = item["name"].get<std::string>();
+    // LPS positions: the CT's bone surface lies within a voxel or two of the template skull's.
+    EXPECT_LT((vec(item["skull_mm"]) - skull.at(name).position_mm).norm(), 4.0) << name;
+    EXPECT_NEAR(item["depth_mm"].get<double>(), *slender.depth_mm(name), 1e-12) << name;
+  }
+  const auto run = nlohmann::json::parse(read_file(out / "run.json"));
+  std::cout << "CT phantom: " << run["facts"]["seconds_total"] << " s; violations " << run["facts"]["violations_before"]
+            << " -> " << run["facts"]["violations_after"] << "\n";
+}
+
+TEST(SlowReconstructCli, RealCtWithoutLandmarksSaysDetectionIsNotAvailable) {
+  FORENSIM_REQUIRE_DATA(ct, "ct-head-headsq/quarter.nhdr");
+  const auto dir = test::scratch_dir("reconstruct_slow_headsq");
+  const auto r =
+      run_cli(std::string(kSmall) + "--ct " + ct.string() + " --landmarks auto -o " + (dir / "run").string());
+  EXPECT_EQ(r.exit_code, static_cast<int>(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("not available yet"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
+}
