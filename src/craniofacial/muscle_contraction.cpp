@@ -45,6 +45,9 @@ MuscleContractionSolver::MuscleContractionSolver(const SkinMuscleModel& model, c
                 "must be at least 1");
   require_input(std::isfinite(options.force_tolerance) && options.force_tolerance > 0.0, "muscle contraction options",
                 "force_tolerance", "must be positive");
+  require_input(std::isfinite(options.relative_force_tolerance) && options.relative_force_tolerance >= 0.0 &&
+                    options.relative_force_tolerance < 1.0,
+                "muscle contraction options", "relative_force_tolerance", "must be in [0, 1)");
   const std::size_t n = model.node_rest_positions.size();
   m_node_dof.assign(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -140,8 +143,9 @@ std::vector<double> MuscleContractionSolver::rest_lengths(const std::vector<doub
 namespace {
 
 /// Evaluates every term at `x` in parallel, each into its own slots.
+/// `project`: clamp the springs' Hessians to positive semi-definite (spring_term()).
 void evaluate_terms(const SkinMuscleModel& m, const std::vector<Vec3>& x, const std::vector<double>& rest, bool hessian,
-                    std::size_t spring_slots, std::size_t skull_slots, Terms& t) {
+                    bool project, std::size_t spring_slots, std::size_t skull_slots, Terms& t) {
   const std::size_t ns = m.spring_nodes.size(), na = m.attachment_node.size();
   t.spring_energy.resize(ns);
   t.spring_gradient.resize(ns);
@@ -149,9 +153,9 @@ void evaluate_terms(const SkinMuscleModel& m, const std::vector<Vec3>& x, const 
   if (hessian) t.slot_values.assign(spring_slots + skull_slots + na * attachment_slot_count, 0.0);
   parallel_for(0, ns, [&](std::size_t s) {
     const auto& e = m.spring_nodes[s];
-    const bool tension_only = m.spring_muscle[s] >= 0;
+    const bool tension_only = false;  // see SkinMuscleModel: a kink at the rest length stalls Newton
     const SpringTerm term = spring_term(x[static_cast<std::size_t>(e[0])], x[static_cast<std::size_t>(e[1])], rest[s],
-                                        m.spring_stiffness[s], tension_only, true);
+                                        m.spring_stiffness[s], tension_only, project);
     t.spring_energy[s] = term.energy;
     t.spring_gradient[s] = term.gradient;
     if (!hessian) return;
@@ -230,7 +234,7 @@ double MuscleContractionSolver::energy(const std::vector<Vec3>& positions, const
   require_input(positions.size() == m_model.node_rest_positions.size(), "muscle contraction positions", "",
                 "expected one position per model node");
   Terms t;
-  evaluate_terms(m_model, positions, rest_lengths(activations), false, m_assembly->spring_slots,
+  evaluate_terms(m_model, positions, rest_lengths(activations), false, true, m_assembly->spring_slots,
                  m_assembly->skull_slots, t);
   std::vector<double> g;
   const double e = reduce_terms(m_model, positions, t, g);
@@ -253,22 +257,35 @@ ContractionResult MuscleContractionSolver::solve(const std::vector<double>& acti
     for (double v : grad) f = std::max(f, std::abs(v));
     return f;
   };
-  evaluate_terms(m_model, x, rest, true, a.spring_slots, a.skull_slots, t);
+  evaluate_terms(m_model, x, rest, true, false, a.spring_slots, a.skull_slots, t);
   double energy = reduce_terms(m_model, x, t, g);
   double force = max_force(g);
+  const double tolerance = std::max(m_options.force_tolerance, m_options.relative_force_tolerance * force);
   int iteration = 0;
-  for (; iteration < m_options.max_newton_iterations && force > m_options.force_tolerance; ++iteration) {
-    double* values = a.matrix.valuePtr();
-    std::fill(values, values + a.matrix.nonZeros(), 0.0);
-    for (std::size_t s = 0; s < a.slot_value_index.size(); ++s) {
-      if (a.slot_value_index[s] >= 0) values[a.slot_value_index[s]] += t.slot_values[s];
-    }
+  for (; iteration < m_options.max_newton_iterations && force > tolerance; ++iteration) {
+    auto scatter = [&](const Terms& terms) {
+      double* values = a.matrix.valuePtr();
+      std::fill(values, values + a.matrix.nonZeros(), 0.0);
+      for (std::size_t s = 0; s < a.slot_value_index.size(); ++s) {
+        if (a.slot_value_index[s] >= 0) values[a.slot_value_index[s]] += terms.slot_values[s];
+      }
+    };
+    scatter(t);
     for (std::size_t i = 0; i < x.size(); ++i) {
       const Index d = m_node_dof[i];
       if (d < 0) continue;
       for (int r = 0; r < 3; ++r) rhs(d + r) = -g[3 * i + static_cast<std::size_t>(r)];
     }
-    a.solver->factor(a.matrix);
+    // The exact Hessian converges quadratically where it is positive definite; where compressed springs make
+    // it indefinite, fall back to the projected one (transverse factors clamped at 0).
+    try {
+      a.solver->factor(a.matrix);
+    } catch (const NumericError&) {
+      Terms projected;
+      evaluate_terms(m_model, x, rest, true, true, a.spring_slots, a.skull_slots, projected);
+      scatter(projected);
+      a.solver->factor(a.matrix);
+    }
     step.setZero(rhs.size());
     a.solver->solve(rhs, step);
     const double slope = -rhs.dot(step);
@@ -284,7 +301,7 @@ ContractionResult MuscleContractionSolver::solve(const std::vector<double>& acti
         const Index d = m_node_dof[i];
         trial[i] = d < 0 ? x[i] : Vec3(x[i] + alpha * step.segment<3>(d));
       }
-      evaluate_terms(m_model, trial, rest, true, a.spring_slots, a.skull_slots, trial_terms);
+      evaluate_terms(m_model, trial, rest, true, false, a.spring_slots, a.skull_slots, trial_terms);
       trial_energy = reduce_terms(m_model, trial, trial_terms, trial_g);
       if (trial_energy <= energy + 1e-4 * alpha * slope || max_force(trial_g) < force * 1e-3) {
         accepted = true;
@@ -299,10 +316,10 @@ ContractionResult MuscleContractionSolver::solve(const std::vector<double>& acti
     energy = trial_energy;
     force = max_force(g);
   }
-  if (!(force <= m_options.force_tolerance)) {
+  if (!(force <= tolerance)) {
     throw NumericError("muscle contraction: Newton stopped after " + std::to_string(iteration) +
                        " iterations with net force " + std::to_string(force) + " (tolerance " +
-                       std::to_string(m_options.force_tolerance) + ")");
+                       std::to_string(tolerance) + ")");
   }
   out.node_positions = std::move(x);
   out.newton_iterations = iteration;

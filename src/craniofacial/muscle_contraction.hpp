@@ -4,10 +4,10 @@
 /// activation a in [0, 1] per muscle shortens the rest length of each of its fibre segments to L (1 - c a)
 /// (c: max_contraction): a linear muscle's fibres, fixed at their bony origin, pull their insertion toward
 /// it; a sphincter's closed rings shrink toward their centre. The skin's static equilibrium (the minimum of
-/// the model's spring energy over all free node positions) is found by projected Newton with a backtracking
-/// line search; the Hessian's sparsity pattern and its fill-reducing ordering are computed once in the
-/// constructor, each Newton step refactors (CHOLMOD). Deterministic at any thread count: element terms are
-/// evaluated in parallel into fixed slots and summed serially in a fixed order.
+/// the model's spring energy over all free node positions) is found by Newton with a backtracking line search
+/// (exact Hessian, projected where it is indefinite); the Hessian's sparsity pattern and its fill-reducing ordering are
+/// computed once in the constructor, each Newton step refactors (CHOLMOD). Deterministic at any thread count: element
+/// terms are evaluated in parallel into fixed slots and summed serially in a fixed order.
 
 #include <memory>
 #include <vector>
@@ -21,9 +21,10 @@ class SparseSpdSolver;
 struct MuscleContractionOptions {
   double max_contraction = 0.3;  ///< c: fibre shortening at activation 1 (facial muscles shorten by about 30 %)
   int max_newton_iterations = 40;
-  /// Stop when every free node's net force is below this (stiffness * mm): the projected Hessian and the
-  /// tension-only fibres make the last digits converge linearly, and 5e-3 leaves node errors of about 1e-2 mm.
-  double force_tolerance = 5e-3;
+  /// Stop when every free node's net force is below max(force_tolerance, relative_force_tolerance times the
+  /// largest force at the rest shape) (stiffness * mm).
+  double force_tolerance = 1e-6;
+  double relative_force_tolerance = 1e-3;
 };
 
 /// One equilibrium: the positions of every model node (skin first).
