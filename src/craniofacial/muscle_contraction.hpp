@@ -20,7 +20,7 @@ class SparseSpdSolver;
 
 struct MuscleContractionOptions {
   double max_contraction = 0.3;  ///< c: fibre shortening at activation 1 (facial muscles shorten by about 30 %)
-  int max_newton_iterations = 40;
+  int max_newton_iterations = 100;
   /// Stop when every free node's net force is below max(force_tolerance, relative_force_tolerance times the
   /// largest force at the rest shape) (stiffness * mm).
   double force_tolerance = 1e-6;

@@ -9,7 +9,8 @@
 /// - skull springs: each skin node is held at its rest position by a zero-length spring whose stiffness falls
 ///   with the soft-tissue depth under it (distance to the skull): full over thin tissue (forehead, scalp,
 ///   nose bridge), weak over thick tissue (cheeks, lips), so skin slides where the face is mobile;
-/// - fibre springs between consecutive samples of each fibre (closed rings for sphincters), tension only;
+/// - fibre springs between consecutive samples of each fibre (closed rings for sphincters), two-sided (the
+///   passive elasticity of the fibre; a tension-only kink at the rest length stalls Newton);
 ///   contraction shortens their rest length; the first sample of a linear muscle's fibre is its bony origin
 ///   and is fixed;
 /// - attachment springs joining every fibre sample to the skin point above it (a point on a skin triangle,
@@ -26,14 +27,14 @@
 namespace forensim {
 
 struct SkinMuscleModelOptions {
-  double skin_stiffness = 1.0;           ///< k_s of each skin edge spring
-  double bending_stiffness = 0.3;        ///< k_b of each spring across an interior edge
-  double skull_stiffness = 1.0;          ///< k_bone of a skin node over thin tissue
-  double loose_skull_stiffness = 0.002;  ///< k_bone over thick tissue
-  double tight_depth_mm = 8.0;           ///< tissue up to this depth is held with skull_stiffness
-  double loose_depth_mm = 14.0;          ///< from this depth with loose_skull_stiffness (smooth blend between)
-  double fibre_stiffness = 20.0;         ///< k_m of each fibre segment
-  double attachment_stiffness = 5.0;     ///< k_a joining a fibre sample to the skin above it
+  double skin_stiffness = 1.0;          ///< k_s of each skin edge spring
+  double bending_stiffness = 0.3;       ///< k_b of each spring across an interior edge
+  double skull_stiffness = 1.0;         ///< k_bone of a skin node over thin tissue
+  double loose_skull_stiffness = 0.02;  ///< k_bone over thick tissue
+  double tight_depth_mm = 8.0;          ///< tissue up to this depth is held with skull_stiffness
+  double loose_depth_mm = 14.0;         ///< from this depth with loose_skull_stiffness (smooth blend between)
+  double fibre_stiffness = 20.0;        ///< k_m of each fibre segment
+  double attachment_stiffness = 5.0;    ///< k_a joining a fibre sample to the skin above it
 };
 
 struct SkinMuscleModel {
