@@ -1,0 +1,332 @@
+#include "craniofacial/muscle_contraction.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "craniofacial/skin_spring_kernels.hpp"
+#include "fem/sparse_solver.hpp"
+
+namespace forensim {
+
+/// The Hessian's fixed structure: every term writes its entries into fixed slots; slot_value_index maps each
+/// slot to its entry of the compressed matrix (-1 where a fixed node is involved).
+struct MuscleContractionSolver::Assembly {
+  std::size_t spring_slots = 0, skull_slots = 0, attachment_slots = 0;
+  std::vector<Index> slot_value_index;
+  SparseMatrix matrix;
+  std::unique_ptr<SparseSpdSolver> solver;
+};
+
+namespace {
+
+constexpr std::size_t spring_slot_count = 36;      // 6 x 6
+constexpr std::size_t attachment_slot_count = 48;  // 4 x 4 node pairs, diagonal of each 3 x 3 block
+
+/// Per-term results of one evaluation.
+struct Terms {
+  std::vector<double> spring_energy;
+  std::vector<Vec6> spring_gradient;
+  std::vector<Vec3> attachment_residual;
+  std::vector<double> slot_values;
+};
+
+}  // namespace
+
+MuscleContractionSolver::MuscleContractionSolver(const SkinMuscleModel& model, const MuscleContractionOptions& options)
+    : m_model(model), m_options(options), m_assembly(std::make_unique<Assembly>()) {
+  require_input(
+      std::isfinite(options.max_contraction) && options.max_contraction > 0.0 && options.max_contraction < 1.0,
+      "muscle contraction options", "max_contraction",
+      "must be in (0, 1), got " + std::to_string(options.max_contraction));
+  require_input(options.max_newton_iterations >= 1, "muscle contraction options", "max_newton_iterations",
+                "must be at least 1");
+  require_input(std::isfinite(options.force_tolerance) && options.force_tolerance > 0.0, "muscle contraction options",
+                "force_tolerance", "must be positive");
+  require_input(std::isfinite(options.relative_force_tolerance) && options.relative_force_tolerance >= 0.0 &&
+                    options.relative_force_tolerance < 1.0,
+                "muscle contraction options", "relative_force_tolerance", "must be in [0, 1)");
+  const std::size_t n = model.node_rest_positions.size();
+  m_node_dof.assign(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!model.node_fixed[i]) {
+      m_node_dof[i] = static_cast<Index>(m_dof_count);
+      m_dof_count += 3;
+    }
+  }
+  Assembly& a = *m_assembly;
+  a.spring_slots = model.spring_nodes.size() * spring_slot_count;
+  a.skull_slots = model.skin_node_count * 3;
+  a.attachment_slots = model.attachment_node.size() * attachment_slot_count;
+  const std::size_t slots = a.spring_slots + a.skull_slots + a.attachment_slots;
+  std::vector<std::pair<Index, Index>> slot_entry(slots, {-1, -1});
+  auto pair_entries = [&](std::size_t first_slot, Index na, Index nb, bool full) {
+    const Index da = m_node_dof[static_cast<std::size_t>(na)], db = m_node_dof[static_cast<std::size_t>(nb)];
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        if (!full && r != c) continue;
+        const std::size_t slot =
+            first_slot + (full ? static_cast<std::size_t>(3 * r + c) : static_cast<std::size_t>(r));
+        if (da >= 0 && db >= 0) slot_entry[slot] = {da + r, db + c};
+      }
+    }
+  };
+  for (std::size_t s = 0; s < model.spring_nodes.size(); ++s) {
+    const auto& e = model.spring_nodes[s];
+    for (int p = 0; p < 2; ++p) {
+      for (int q = 0; q < 2; ++q) {
+        pair_entries(s * spring_slot_count + static_cast<std::size_t>(9 * (2 * p + q)), e[static_cast<std::size_t>(p)],
+                     e[static_cast<std::size_t>(q)], true);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < model.skin_node_count; ++i) {
+    pair_entries(a.spring_slots + 3 * i, static_cast<Index>(i), static_cast<Index>(i), false);
+  }
+  for (std::size_t k = 0; k < model.attachment_node.size(); ++k) {
+    const Tri& t = model.attachment_triangle[k];
+    const std::array<Index, 4> nodes = {t[0], t[1], t[2], model.attachment_node[k]};
+    for (int p = 0; p < 4; ++p) {
+      for (int q = 0; q < 4; ++q) {
+        pair_entries(
+            a.spring_slots + a.skull_slots + k * attachment_slot_count + static_cast<std::size_t>(3 * (4 * p + q)),
+            nodes[static_cast<std::size_t>(p)], nodes[static_cast<std::size_t>(q)], false);
+      }
+    }
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(slots);
+  for (const auto& [r, c] : slot_entry) {
+    if (r >= 0) triplets.emplace_back(r, c, 1.0);
+  }
+  a.matrix.resize(static_cast<Eigen::Index>(m_dof_count), static_cast<Eigen::Index>(m_dof_count));
+  a.matrix.setFromTriplets(triplets.begin(), triplets.end());
+  a.matrix.makeCompressed();
+  a.slot_value_index.assign(slots, -1);
+  const int* outer = a.matrix.outerIndexPtr();
+  const int* inner = a.matrix.innerIndexPtr();
+  for (std::size_t s = 0; s < slots; ++s) {
+    const auto [r, c] = slot_entry[s];
+    if (r < 0) continue;
+    const int* begin = inner + outer[c];
+    const int* end = inner + outer[c + 1];
+    const int* it = std::lower_bound(begin, end, r);
+    a.slot_value_index[s] = static_cast<Index>(it - inner);
+  }
+  a.solver = make_sparse_solver(SparseSolverKind::cholmod);
+  a.solver->analyse(a.matrix);
+}
+
+MuscleContractionSolver::~MuscleContractionSolver() = default;
+
+void MuscleContractionSolver::check_activations(const std::vector<double>& activations) const {
+  require_input(activations.size() == m_model.muscle_names.size(), "muscle activations", "",
+                "expected " + std::to_string(m_model.muscle_names.size()) + " values (one per muscle), got " +
+                    std::to_string(activations.size()));
+  for (std::size_t k = 0; k < activations.size(); ++k) {
+    require_input(std::isfinite(activations[k]) && activations[k] >= 0.0 && activations[k] <= 1.0, "muscle activations",
+                  m_model.muscle_names[k], "must be in [0, 1], got " + std::to_string(activations[k]));
+  }
+}
+
+std::vector<double> MuscleContractionSolver::rest_lengths(const std::vector<double>& activations) const {
+  std::vector<double> rest = m_model.spring_rest_length_mm;
+  for (std::size_t s = 0; s < rest.size(); ++s) {
+    const Index k = m_model.spring_muscle[s];
+    if (k >= 0) rest[s] *= 1.0 - m_options.max_contraction * activations[static_cast<std::size_t>(k)];
+  }
+  return rest;
+}
+
+namespace {
+
+/// Evaluates every term at `x` in parallel, each into its own slots.
+/// `project`: clamp the springs' Hessians to positive semi-definite (spring_term()).
+void evaluate_terms(const SkinMuscleModel& m, const std::vector<Vec3>& x, const std::vector<double>& rest, bool hessian,
+                    bool project, std::size_t spring_slots, std::size_t skull_slots, Terms& t) {
+  const std::size_t ns = m.spring_nodes.size(), na = m.attachment_node.size();
+  t.spring_energy.resize(ns);
+  t.spring_gradient.resize(ns);
+  t.attachment_residual.resize(na);
+  if (hessian) t.slot_values.assign(spring_slots + skull_slots + na * attachment_slot_count, 0.0);
+  parallel_for(0, ns, [&](std::size_t s) {
+    const auto& e = m.spring_nodes[s];
+    const bool tension_only = false;  // see SkinMuscleModel: a kink at the rest length stalls Newton
+    const SpringTerm term = spring_term(x[static_cast<std::size_t>(e[0])], x[static_cast<std::size_t>(e[1])], rest[s],
+                                        m.spring_stiffness[s], tension_only, project);
+    t.spring_energy[s] = term.energy;
+    t.spring_gradient[s] = term.gradient;
+    if (!hessian) return;
+    double* out = t.slot_values.data() + s * spring_slot_count;
+    for (int p = 0; p < 2; ++p) {
+      for (int q = 0; q < 2; ++q) {
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) out[9 * (2 * p + q) + 3 * r + c] = term.hessian(3 * p + r, 3 * q + c);
+        }
+      }
+    }
+  });
+  parallel_for(0, na, [&](std::size_t k) {
+    const Tri& tri = m.attachment_triangle[k];
+    t.attachment_residual[k] = attachment_residual(
+        x[static_cast<std::size_t>(tri[0])], x[static_cast<std::size_t>(tri[1])], x[static_cast<std::size_t>(tri[2])],
+        x[static_cast<std::size_t>(m.attachment_node[k])], m.attachment_barycentric[k], m.attachment_offset[k]);
+    if (!hessian) return;
+    const Vec3& w = m.attachment_barycentric[k];
+    const double c[4] = {w(0), w(1), w(2), -1.0};
+    double* out = t.slot_values.data() + spring_slots + skull_slots + k * attachment_slot_count;
+    for (int p = 0; p < 4; ++p) {
+      for (int q = 0; q < 4; ++q) {
+        for (int r = 0; r < 3; ++r) out[3 * (4 * p + q) + r] = m.attachment_stiffness * c[p] * c[q];
+      }
+    }
+  });
+  if (hessian) {
+    for (std::size_t i = 0; i < m.skin_node_count; ++i) {
+      for (int r = 0; r < 3; ++r)
+        t.slot_values[spring_slots + 3 * i + static_cast<std::size_t>(r)] = m.node_skull_stiffness[i];
+    }
+  }
+}
+
+/// Serial, fixed-order sums of the terms: energy and gradient (3 #N).
+double reduce_terms(const SkinMuscleModel& m, const std::vector<Vec3>& x, const Terms& t, std::vector<double>& g) {
+  g.assign(3 * x.size(), 0.0);
+  double energy = 0.0;
+  for (std::size_t s = 0; s < m.spring_nodes.size(); ++s) {
+    energy += t.spring_energy[s];
+    for (int p = 0; p < 2; ++p) {
+      const std::size_t n = static_cast<std::size_t>(m.spring_nodes[s][static_cast<std::size_t>(p)]);
+      for (int r = 0; r < 3; ++r) g[3 * n + static_cast<std::size_t>(r)] += t.spring_gradient[s](3 * p + r);
+    }
+  }
+  for (std::size_t i = 0; i < m.skin_node_count; ++i) {
+    const Vec3 d = x[i] - m.node_rest_positions[i];
+    energy += 0.5 * m.node_skull_stiffness[i] * d.squaredNorm();
+    for (int r = 0; r < 3; ++r) g[3 * i + static_cast<std::size_t>(r)] += m.node_skull_stiffness[i] * d(r);
+  }
+  for (std::size_t k = 0; k < m.attachment_node.size(); ++k) {
+    const Vec3& res = t.attachment_residual[k];
+    energy += 0.5 * m.attachment_stiffness * res.squaredNorm();
+    const Tri& tri = m.attachment_triangle[k];
+    const Vec3& w = m.attachment_barycentric[k];
+    const std::size_t nodes[4] = {static_cast<std::size_t>(tri[0]), static_cast<std::size_t>(tri[1]),
+                                  static_cast<std::size_t>(tri[2]), static_cast<std::size_t>(m.attachment_node[k])};
+    const double c[4] = {w(0), w(1), w(2), -1.0};
+    for (int p = 0; p < 4; ++p) {
+      for (int r = 0; r < 3; ++r)
+        g[3 * nodes[p] + static_cast<std::size_t>(r)] += m.attachment_stiffness * c[p] * res(r);
+    }
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (m.node_fixed[i]) g[3 * i] = g[3 * i + 1] = g[3 * i + 2] = 0.0;
+  }
+  return energy;
+}
+
+}  // namespace
+
+double MuscleContractionSolver::energy(const std::vector<Vec3>& positions, const std::vector<double>& activations,
+                                       std::vector<double>* gradient) const {
+  check_activations(activations);
+  require_input(positions.size() == m_model.node_rest_positions.size(), "muscle contraction positions", "",
+                "expected one position per model node");
+  Terms t;
+  evaluate_terms(m_model, positions, rest_lengths(activations), false, true, m_assembly->spring_slots,
+                 m_assembly->skull_slots, t);
+  std::vector<double> g;
+  const double e = reduce_terms(m_model, positions, t, g);
+  if (gradient) *gradient = std::move(g);
+  return e;
+}
+
+ContractionResult MuscleContractionSolver::solve(const std::vector<double>& activations) const {
+  const auto start = std::chrono::steady_clock::now();
+  check_activations(activations);
+  const std::vector<double> rest = rest_lengths(activations);
+  Assembly& a = *m_assembly;
+  ContractionResult out;
+  std::vector<Vec3> x = m_model.node_rest_positions;
+  Terms t;
+  std::vector<double> g;
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(m_dof_count)), step;
+  auto max_force = [&](const std::vector<double>& grad) {
+    double f = 0.0;
+    for (double v : grad) f = std::max(f, std::abs(v));
+    return f;
+  };
+  evaluate_terms(m_model, x, rest, true, false, a.spring_slots, a.skull_slots, t);
+  double energy = reduce_terms(m_model, x, t, g);
+  double force = max_force(g);
+  const double tolerance = std::max(m_options.force_tolerance, m_options.relative_force_tolerance * force);
+  int iteration = 0;
+  for (; iteration < m_options.max_newton_iterations && force > tolerance; ++iteration) {
+    auto scatter = [&](const Terms& terms) {
+      double* values = a.matrix.valuePtr();
+      std::fill(values, values + a.matrix.nonZeros(), 0.0);
+      for (std::size_t s = 0; s < a.slot_value_index.size(); ++s) {
+        if (a.slot_value_index[s] >= 0) values[a.slot_value_index[s]] += terms.slot_values[s];
+      }
+    };
+    scatter(t);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const Index d = m_node_dof[i];
+      if (d < 0) continue;
+      for (int r = 0; r < 3; ++r) rhs(d + r) = -g[3 * i + static_cast<std::size_t>(r)];
+    }
+    // The exact Hessian converges quadratically where it is positive definite; where compressed springs make
+    // it indefinite, fall back to the projected one (transverse factors clamped at 0).
+    try {
+      a.solver->factor(a.matrix);
+    } catch (const NumericError&) {
+      Terms projected;
+      evaluate_terms(m_model, x, rest, true, true, a.spring_slots, a.skull_slots, projected);
+      scatter(projected);
+      a.solver->factor(a.matrix);
+    }
+    step.setZero(rhs.size());
+    a.solver->solve(rhs, step);
+    const double slope = -rhs.dot(step);
+    // Backtracking (Armijo) line search on the energy.
+    double alpha = 1.0;
+    std::vector<Vec3> trial(x.size());
+    double trial_energy = energy;
+    std::vector<double> trial_g;
+    Terms trial_terms;
+    bool accepted = false;
+    for (int ls = 0; ls < 40; ++ls) {
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const Index d = m_node_dof[i];
+        trial[i] = d < 0 ? x[i] : Vec3(x[i] + alpha * step.segment<3>(d));
+      }
+      evaluate_terms(m_model, trial, rest, true, false, a.spring_slots, a.skull_slots, trial_terms);
+      trial_energy = reduce_terms(m_model, trial, trial_terms, trial_g);
+      if (trial_energy <= energy + 1e-4 * alpha * slope || max_force(trial_g) < force * 1e-3) {
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!accepted) break;
+    x.swap(trial);
+    std::swap(t, trial_terms);
+    g.swap(trial_g);
+    energy = trial_energy;
+    force = max_force(g);
+  }
+  if (!(force <= tolerance)) {
+    throw NumericError("muscle contraction: Newton stopped after " + std::to_string(iteration) +
+                       " iterations with net force " + std::to_string(force) + " (tolerance " +
+                       std::to_string(tolerance) + ")");
+  }
+  out.node_positions = std::move(x);
+  out.newton_iterations = iteration;
+  out.max_force = force;
+  out.energy = energy;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace forensim

@@ -1,0 +1,73 @@
+#pragma once
+/// Muscle contraction on the skin-muscle-skull spring model (skin_muscle_model.hpp; Kähler, Haber and Seidel
+/// 2003, section 5: "different facial expressions can be assumed by setting muscle contractions"). An
+/// activation a in [0, 1] per muscle shortens the rest length of each of its fibre segments to L (1 - c a)
+/// (c: max_contraction): a linear muscle's fibres, fixed at their bony origin, pull their insertion toward
+/// it; a sphincter's closed rings shrink toward their centre. The skin's static equilibrium (the minimum of
+/// the model's spring energy over all free node positions) is found by Newton with a backtracking line search
+/// (exact Hessian, projected where it is indefinite); the Hessian's sparsity pattern and its fill-reducing ordering are
+/// computed once in the constructor, each Newton step refactors (CHOLMOD). Deterministic at any thread count: element
+/// terms are evaluated in parallel into fixed slots and summed serially in a fixed order.
+
+#include <memory>
+#include <vector>
+
+#include "craniofacial/skin_muscle_model.hpp"
+
+namespace forensim {
+
+class SparseSpdSolver;
+
+struct MuscleContractionOptions {
+  double max_contraction = 0.3;  ///< c: fibre shortening at activation 1 (facial muscles shorten by about 30 %)
+  int max_newton_iterations = 100;
+  /// Stop when every free node's net force is below max(force_tolerance, relative_force_tolerance times the
+  /// largest force at the rest shape) (stiffness * mm).
+  double force_tolerance = 1e-6;
+  double relative_force_tolerance = 1e-3;
+};
+
+/// One equilibrium: the positions of every model node (skin first).
+struct ContractionResult {
+  std::vector<Vec3> node_positions;  ///< #N, mm
+  int newton_iterations = 0;
+  double max_force = 0.0;  ///< largest net force on a free node at the end
+  double energy = 0.0;     ///< spring energy at the end
+  double seconds = 0.0;
+};
+
+class MuscleContractionSolver {
+ public:
+  /// Keeps a reference to `model` (it must outlive the solver). Builds the Hessian pattern and its symbolic
+  /// factorisation. Throws InputError for options out of range (max_contraction in (0, 1), iterations >= 1,
+  /// tolerance > 0).
+  explicit MuscleContractionSolver(const SkinMuscleModel& model, const MuscleContractionOptions& options = {});
+  ~MuscleContractionSolver();
+  MuscleContractionSolver(const MuscleContractionSolver&) = delete;
+  MuscleContractionSolver& operator=(const MuscleContractionSolver&) = delete;
+
+  /// Equilibrium for `activations` (#M, in model.muscle_names order, each in [0, 1]; else InputError naming
+  /// the muscle). All zero gives the rest positions exactly. Throws NumericError if Newton does not reach
+  /// the tolerance.
+  ContractionResult solve(const std::vector<double>& activations) const;
+
+  /// Spring energy and its gradient (3 #N, zero rows for fixed nodes) at `positions` for `activations`,
+  /// exposed for derivative tests.
+  double energy(const std::vector<Vec3>& positions, const std::vector<double>& activations,
+                std::vector<double>* gradient = nullptr) const;
+
+  const SkinMuscleModel& model() const { return m_model; }
+
+ private:
+  struct Assembly;
+  void check_activations(const std::vector<double>& activations) const;
+  std::vector<double> rest_lengths(const std::vector<double>& activations) const;
+
+  const SkinMuscleModel& m_model;
+  MuscleContractionOptions m_options;
+  std::vector<Index> m_node_dof;  ///< first unknown of each node, -1 when fixed
+  std::size_t m_dof_count = 0;
+  std::unique_ptr<Assembly> m_assembly;
+};
+
+}  // namespace forensim
