@@ -197,26 +197,6 @@ Vec2 tooth_xy(int t) {
   return Vec2(std::sin(angle) * 24.0, -78.0 + (1.0 - std::cos(angle)) * 34.0);
 }
 
-/// Triangle neighbours across each edge (-1 on a border).
-std::vector<std::array<std::int32_t, 3>> triangle_neighbours(const TriMesh& mesh) {
-  std::unordered_map<std::uint64_t, std::int32_t> first;
-  std::vector<std::array<std::int32_t, 3>> nb(mesh.triangles.size(), {-1, -1, -1});
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Tri& f = mesh.triangles[t];
-    for (std::size_t k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::uint32_t>(std::min(f[k], f[(k + 1) % 3]));
-      const auto b = static_cast<std::uint32_t>(std::max(f[k], f[(k + 1) % 3]));
-      const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | b;
-      auto [it, inserted] = first.try_emplace(key, static_cast<std::int32_t>(t * 3 + k));
-      if (inserted) continue;
-      const auto u = static_cast<std::size_t>(it->second) / 3, ku = static_cast<std::size_t>(it->second) % 3;
-      nb[t][k] = static_cast<std::int32_t>(u);
-      nb[u][ku] = static_cast<std::int32_t>(t);
-    }
-  }
-  return nb;
-}
-
 /// Gives every piece of a chart other than its largest to the neighbouring chart it shares most edges with,
 /// and a triangle with two or more neighbours in one other chart to that chart (a straighter seam). Returns
 /// the triangles moved.
@@ -237,50 +217,7 @@ std::size_t clean_charts(const std::vector<std::array<std::int32_t, 3>>& nb, std
       }
     }
   }
-  std::vector<std::int32_t> component(n, -1);
-  std::vector<std::vector<std::int32_t>> members;
-  for (std::size_t seed = 0; seed < n; ++seed) {
-    if (component[seed] >= 0) continue;
-    const auto id = static_cast<std::int32_t>(members.size());
-    members.emplace_back();
-    std::vector<std::int32_t> stack{static_cast<std::int32_t>(seed)};
-    component[seed] = id;
-    while (!stack.empty()) {
-      const std::int32_t t = stack.back();
-      stack.pop_back();
-      members.back().push_back(t);
-      for (const std::int32_t u : nb[static_cast<std::size_t>(t)]) {
-        if (u >= 0 && component[static_cast<std::size_t>(u)] < 0 &&
-            chart[static_cast<std::size_t>(u)] == chart[static_cast<std::size_t>(t)]) {
-          component[static_cast<std::size_t>(u)] = id;
-          stack.push_back(u);
-        }
-      }
-    }
-  }
-  std::map<int, std::size_t> largest;
-  for (std::size_t c = 0; c < members.size(); ++c) {
-    const int label = chart[static_cast<std::size_t>(members[c][0])];
-    auto [it, inserted] = largest.try_emplace(label, c);
-    if (!inserted && members[c].size() > members[it->second].size()) it->second = c;
-  }
-  for (std::size_t c = 0; c < members.size(); ++c) {
-    const int label = chart[static_cast<std::size_t>(members[c][0])];
-    if (largest[label] == c) continue;
-    std::map<int, int> votes;
-    for (const std::int32_t t : members[c]) {
-      for (const std::int32_t u : nb[static_cast<std::size_t>(t)]) {
-        if (u >= 0 && chart[static_cast<std::size_t>(u)] != label) ++votes[chart[static_cast<std::size_t>(u)]];
-      }
-    }
-    if (votes.empty()) continue;
-    const int target = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
-                         return a.second < b.second;
-                       })->first;
-    for (const std::int32_t t : members[c]) chart[static_cast<std::size_t>(t)] = target;
-    moved += members[c].size();
-  }
-  return moved;
+  return moved + merge_chart_islands(nb, chart);
 }
 
 constexpr double top_chart_z = 100.0;     // above: the crown of the head
@@ -577,7 +514,7 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
   head.seconds_landmarks = watch.lap();
   if (options.uv_atlas) {
     head.triangle_chart = assign_charts(head.skin);
-    const auto nb = triangle_neighbours(head.skin);
+    const auto nb = triangle_edge_neighbours(head.skin);
     for (int round = 0; round < 50 && clean_charts(nb, head.triangle_chart) > 0; ++round) {
     }
     UvAtlasOptions atlas_options;

@@ -726,4 +726,78 @@ std::size_t uv_outside_unit_square(const TriMesh& mesh, double margin) {
   return outside;
 }
 
+namespace {
+std::uint64_t chart_edge_key(Index a, Index b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+}  // namespace
+
+std::vector<std::array<std::int32_t, 3>> triangle_edge_neighbours(const TriMesh& mesh) {
+  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> edges;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      edges[chart_edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(
+          static_cast<std::int32_t>(t));
+    }
+  }
+  std::vector<std::array<std::int32_t, 3>> out(mesh.triangles.size(), {-1, -1, -1});
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& users = edges[chart_edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])];
+      if (users.size() == 2) out[t][k] = users[0] == static_cast<std::int32_t>(t) ? users[1] : users[0];
+    }
+  }
+  return out;
+}
+
+std::size_t merge_chart_islands(const std::vector<std::array<std::int32_t, 3>>& neighbours, std::vector<int>& chart) {
+  const std::size_t n = chart.size();
+  std::vector<std::int32_t> component(n, -1);
+  std::vector<std::vector<std::int32_t>> members;
+  for (std::size_t seed = 0; seed < n; ++seed) {
+    if (component[seed] >= 0) continue;
+    const auto id = static_cast<std::int32_t>(members.size());
+    members.emplace_back();
+    std::vector<std::int32_t> stack{static_cast<std::int32_t>(seed)};
+    component[seed] = id;
+    while (!stack.empty()) {
+      const std::int32_t t = stack.back();
+      stack.pop_back();
+      members.back().push_back(t);
+      for (const std::int32_t u : neighbours[static_cast<std::size_t>(t)]) {
+        if (u >= 0 && component[static_cast<std::size_t>(u)] < 0 &&
+            chart[static_cast<std::size_t>(u)] == chart[static_cast<std::size_t>(t)]) {
+          component[static_cast<std::size_t>(u)] = id;
+          stack.push_back(u);
+        }
+      }
+    }
+  }
+  std::map<int, std::size_t> largest;  // chart -> component index
+  for (std::size_t c = 0; c < members.size(); ++c) {
+    const int label = chart[static_cast<std::size_t>(members[c][0])];
+    auto [it, inserted] = largest.try_emplace(label, c);
+    if (!inserted && members[c].size() > members[it->second].size()) it->second = c;
+  }
+  std::size_t moved = 0;
+  for (std::size_t c = 0; c < members.size(); ++c) {
+    const int label = chart[static_cast<std::size_t>(members[c][0])];
+    if (largest[label] == c) continue;
+    std::map<int, int> votes;
+    for (const std::int32_t t : members[c]) {
+      for (const std::int32_t u : neighbours[static_cast<std::size_t>(t)]) {
+        if (u >= 0 && chart[static_cast<std::size_t>(u)] != label) ++votes[chart[static_cast<std::size_t>(u)]];
+      }
+    }
+    if (votes.empty()) continue;
+    const int target = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+                         return a.second < b.second;
+                       })->first;
+    for (const std::int32_t t : members[c]) chart[static_cast<std::size_t>(t)] = target;
+    moved += members[c].size();
+  }
+  return moved;
+}
+
 }  // namespace forensim

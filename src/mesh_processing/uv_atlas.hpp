@@ -3,7 +3,9 @@
 /// texel density and packed without overlap into the unit square, so procedural skin maps can be baked and
 /// wounds painted into them.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,15 @@ struct UvAtlas {
   std::vector<UvChartStats> charts;  ///< one per distinct chart id, in increasing id order
   UvAtlasStats stats;
 };
+
+/// Triangles across each edge of each triangle of `mesh` (#F, edge k joins corners k and k+1; -1 on a border
+/// or a non-manifold edge).
+std::vector<std::array<std::int32_t, 3>> triangle_edge_neighbours(const TriMesh& mesh);
+
+/// Chart clean-up before flattening: every edge-connected piece of a chart (#F labels in `triangle_chart`)
+/// other than its largest moves to the chart it shares most edges with. Returns the triangles moved.
+std::size_t merge_chart_islands(const std::vector<std::array<std::int32_t, 3>>& neighbours,
+                                std::vector<int>& triangle_chart);
 
 /// Flattens and packs the charts of `mesh` (welded, manifold, consistently oriented; lengths in mm).
 /// `triangle_chart` gives a chart id (any non-negative int) per triangle; each chart must be a topological
