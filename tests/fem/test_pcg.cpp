@@ -7,6 +7,7 @@
 #include "fem/pcg.hpp"
 #include "fem/tet_element.hpp"
 #include "geometry/primitives.hpp"
+#include "heat_matrix.hpp"
 
 using namespace forensim;
 
@@ -16,17 +17,7 @@ namespace {
 SparseMatrix heat_matrix(double scale, int cells = 6) {
   const TetMesh mesh = make_box_tet_mesh(Vec3::Zero(), Vec3(4, 3, 2), 2 * cells, 3 * cells / 2, cells);
   const SparsityPattern pattern(mesh.tets, mesh.vertex_count(), 1);
-  SparseMatrix a = pattern.make_matrix();
-  pattern.assemble_scalar(
-      [&](std::size_t e, Mat4& m) {
-        const Tet& t = mesh.tets[e];
-        const TetCorners p{mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]};
-        double volume = 0.0;
-        const Mat34 g = tet_shape_gradients(p, &volume);
-        m = tet_diffusion_stiffness(g, volume, scale) + tet_consistent_mass(volume, 1.0);
-      },
-      a);
-  return a;
+  return test::heat_matrix(mesh, pattern, scale);
 }
 
 Eigen::VectorXd solve_jacobi(const SparseMatrix& a, const Eigen::VectorXd& b, double tolerance, int* iterations) {

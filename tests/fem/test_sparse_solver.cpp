@@ -3,25 +3,13 @@
 #include "fem/sparse_solver.hpp"
 #include "fem/tet_element.hpp"
 #include "geometry/primitives.hpp"
+#include "heat_matrix.hpp"
 
 using namespace forensim;
 
 namespace {
 
-/// Mass + scale * Laplacian on a box (SPD).
-SparseMatrix heat_matrix(const TetMesh& mesh, const SparsityPattern& pattern, double scale) {
-  SparseMatrix a = pattern.make_matrix();
-  pattern.assemble_scalar(
-      [&](std::size_t e, Mat4& m) {
-        const Tet& t = mesh.tets[e];
-        const TetCorners p{mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]};
-        double volume = 0.0;
-        const Mat34 g = tet_shape_gradients(p, &volume);
-        m = tet_diffusion_stiffness(g, volume, scale) + tet_consistent_mass(volume, 1.0);
-      },
-      a);
-  return a;
-}
+using test::heat_matrix;
 
 }  // namespace
 
