@@ -7,7 +7,9 @@
 
 #include <cerrno>
 #include <cstring>
-#include <regex>
+#include <cstdint>
+#include <limits>
+#include <string_view>
 
 #include "core/error.hpp"
 
@@ -17,20 +19,63 @@ namespace {
 constexpr std::size_t kKeptLines = 40;
 }
 
+namespace {
+
+/// Reads an unsigned decimal at `text[pos]`, advancing `pos`; nothing when no digit is there or it overflows.
+std::optional<std::uint64_t> read_count(std::string_view text, std::size_t& pos) {
+  const std::size_t begin = pos;
+  std::uint64_t value = 0;
+  while (pos < text.size() && text[pos] >= '0' && text[pos] <= '9') {
+    const std::uint64_t digit = static_cast<std::uint64_t>(text[pos] - '0');
+    if (value > (std::numeric_limits<std::uint64_t>::max() - digit) / 10) return std::nullopt;
+    value = value * 10 + digit;
+    ++pos;
+  }
+  if (pos == begin) return std::nullopt;
+  return value;
+}
+
+/// Consumes `literal` at `text[pos]`.
+bool read_literal(std::string_view text, std::size_t& pos, std::string_view literal) {
+  if (text.substr(pos, literal.size()) != literal) return false;
+  pos += literal.size();
+  return true;
+}
+
+/// Parses the part after "label: " in one of the three progress forms.
+std::optional<ProgressLine> parse_progress_rest(const std::string& label, std::string_view rest) {
+  std::size_t pos = 0;
+  if (read_literal(rest, pos, "started (")) {  // "started (N steps)"
+    const auto steps = read_count(rest, pos);
+    if (steps && read_literal(rest, pos, " steps)") && pos == rest.size()) return ProgressLine{label, 0, *steps};
+    return std::nullopt;
+  }
+  const auto first = read_count(rest, pos);
+  if (!first) return std::nullopt;
+  if (read_literal(rest, pos, "% (")) {  // "P% (D/N) eta ..."
+    const auto done = read_count(rest, pos);
+    if (!done || !read_literal(rest, pos, "/")) return std::nullopt;
+    const auto total = read_count(rest, pos);
+    if (total && read_literal(rest, pos, ") eta ")) return ProgressLine{label, *done, *total};
+    return std::nullopt;
+  }
+  if (read_literal(rest, pos, "/")) {  // "D/N done in ..."
+    const auto total = read_count(rest, pos);
+    if (total && read_literal(rest, pos, " done in ")) return ProgressLine{label, *first, *total};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<ProgressLine> parse_progress_line(const std::string& line) {
-  static const std::regex running(R"(^(.+): (\d+)% \((\d+)/(\d+)\) eta .*$)");
-  static const std::regex started(R"(^(.+): started \((\d+) steps\)$)");
-  static const std::regex finished(R"(^(.+): (\d+)/(\d+) done in .*$)");
-  std::smatch m;
-  try {
-    if (std::regex_match(line, m, running)) {
-      return ProgressLine{m[1].str(), std::stoull(m[3].str()), std::stoull(m[4].str())};
+  // The label may itself hold ": ", so every split point is tried from the last (the label is the longest
+  // prefix that leaves a well-formed rest, as a greedy "(.+): " would take it).
+  for (std::size_t split = line.rfind(": "); split != std::string::npos && split > 0;
+       split = split == 0 ? std::string::npos : line.rfind(": ", split - 1)) {
+    if (auto parsed = parse_progress_rest(line.substr(0, split), std::string_view(line).substr(split + 2))) {
+      return parsed;
     }
-    if (std::regex_match(line, m, started)) return ProgressLine{m[1].str(), 0, std::stoull(m[2].str())};
-    if (std::regex_match(line, m, finished)) {
-      return ProgressLine{m[1].str(), std::stoull(m[2].str()), std::stoull(m[3].str())};
-    }
-  } catch (const std::exception&) {  // numbers out of range: not a progress line of ours
   }
   return std::nullopt;
 }
