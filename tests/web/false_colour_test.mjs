@@ -8,6 +8,7 @@ import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const web = resolve(process.argv[2] || 'web');
+const near = (a, b, what) => a.forEach((x, k) => assert.ok(Math.abs(x - b[k]) < 1e-6, `${what}: ${a} vs ${b}`));
 const fc = await import(pathToFileURL(resolve(web, 'js', 'false_colour.js')).href);
 
 // A closed octahedron of "radius" 2 mm: 8 equilateral faces of side 2 sqrt(2).
@@ -41,9 +42,15 @@ const u = fc.colourModes(recon).find((m) => m.id === 'uncertainty');
 assert.equal(u.unit, 'mm');
 assert.deepEqual(fc.rangeOf(u.values(recon)), [1, 6]);
 assert.deepEqual(fc.rangeOf([NaN, 2, -1, Infinity]), [-1, 2]);
+// A series' range: the union of its ends; shrinkage symmetric about 0, so no change is the map's middle.
+assert.deepEqual(fc.seriesRange('uncertainty', [1, 3], [2, 6]), [1, 6]);
+assert.deepEqual(fc.seriesRange('shrinkage', [-3.5, 0], [-1, 5.25]), [-5.25, 5.25]);
+assert.deepEqual(fc.seriesRange('shrinkage', [0, 0], [0, 0]), [-0.1, 0.1]);
+const mid = fc.COLOUR_MAPS.shrinkage[(fc.COLOUR_MAPS.shrinkage.length - 1) / 2];
+near(Array.from(fc.coloursOf([0], fc.seriesRange('shrinkage', [-2, 0], [0, 1]), fc.COLOUR_MAPS.shrinkage, 1)), mid,
+     'no shrinkage in the pale middle');
 
 // Colour maps: the ends are the first and last stops; values outside the range clamp.
-const near = (a, b, what) => a.forEach((x, k) => assert.ok(Math.abs(x - b[k]) < 1e-6, `${what}: ${a} vs ${b}`));
 for (const [name, map] of Object.entries(fc.COLOUR_MAPS)) {
   near(fc.mapColour(map, 0), map[0], name + ' at 0');
   near(fc.mapColour(map, 1), map[map.length - 1], name + ' at 1');

@@ -7,7 +7,7 @@ import { describeRun, followJob, frameSurface, listRuns, startJob } from './api.
 import { cameraControls, cutControls } from './stage.js';
 import { steppedTimeline } from './timeline_control.js';
 import { formatDays } from './time_units.js';
-import { colourModes, coloursOf, legend, rangeOf } from './false_colour.js';
+import { colourModes, coloursOf, legend, rangeOf, seriesRange } from './false_colour.js';
 import { escapeHtml, html } from './util.js';
 
 /// A BufferGeometry of a frame's surface at `positions` (mm) with per-vertex `colours` (linear RGB).
@@ -59,9 +59,7 @@ export class FrameColouring {
     if (!this.ranges.has(mode.id)) {
       const a = rangeOf(mode.values(this.first, this.restOf(this.first)));
       const b = rangeOf(mode.values(this.last, this.restOf(this.last)));
-      let r = [Math.min(a[0], b[0]), Math.max(a[1], b[1])];
-      if (mode.id === 'shrinkage') r = [Math.min(0, r[0]), Math.max(r[1], 0.1)];  // 0 = unchanged, at the pale end
-      this.ranges.set(mode.id, r);
+      this.ranges.set(mode.id, seriesRange(mode.id, a, b));
     }
     return this.ranges.get(mode.id);
   }

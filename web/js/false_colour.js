@@ -11,8 +11,8 @@
 export const COLOUR_MAPS = {
   // Dry (brown) to wet (blue) through straw yellow.
   moisture: [[0.545, 0.145, 0.0], [0.941, 0.753, 0.314], [0.173, 0.498, 0.722]],
-  // No change (pale) to strong shrinkage (dark red), through orange.
-  shrinkage: [[0.96, 0.94, 0.90], [0.99, 0.68, 0.38], [0.84, 0.19, 0.15], [0.40, 0.0, 0.05]],
+  // Diverging about no change (pale, the middle of a range symmetric about 0): stretched (blue) to shrunk (red).
+  shrinkage: [[0.02, 0.19, 0.38], [0.26, 0.58, 0.76], [0.97, 0.97, 0.97], [0.96, 0.50, 0.38], [0.40, 0.0, 0.12]],
   // Viridis at five points: certain (dark blue) to uncertain (yellow).
   uncertainty: [[0.267, 0.005, 0.329], [0.231, 0.322, 0.545], [0.129, 0.569, 0.549], [0.369, 0.788, 0.384],
                 [0.993, 0.906, 0.144]],
@@ -94,6 +94,15 @@ export function rangeOf(values) {
     if (v > hi) hi = v;
   }
   return lo <= hi ? [lo, hi] : [0, 0];
+}
+
+/// The range a mode is shown over in a series, from the ranges `a` and `b` of its first and last frames:
+/// their union; for shrinkage symmetric about 0 (at least +-0.1 %), so no change sits in the map's pale middle.
+export function seriesRange(modeId, a, b) {
+  const r = [Math.min(a[0], b[0]), Math.max(a[1], b[1])];
+  if (modeId !== 'shrinkage') return r;
+  const m = Math.max(Math.abs(r[0]), Math.abs(r[1]), 0.1);
+  return [-m, m];
 }
 
 /// Per-vertex linear RGB (Float32Array, 3 per vertex) of `values` mapped over `range` on `map`.
