@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <string>
 
 #include "core/atomic_file.hpp"
@@ -31,15 +30,17 @@ struct Surface {
 Surface read_surface(const std::filesystem::path& path) {
   const std::string bytes = read_file(path);
   Surface s;
-  std::optional<TetMesh> volume;
+  TetMesh volume;
+  bool tets = true;
   try {
     volume = parse_vtu(bytes, path.string());
   } catch (const InputError& e) {
     if (e.problem().find("VTK cell type") == std::string::npos) throw;
+    tets = false;
   }
-  if (volume) {
-    s.mesh = tet_boundary_mesh(*volume, -1, nullptr, &s.source_of_vertex);
-    s.fields = std::move(volume->vertex_fields);
+  if (tets) {
+    s.mesh = tet_boundary_mesh(volume, -1, nullptr, &s.source_of_vertex);
+    s.fields = std::move(volume.vertex_fields);
     s.cells = "tetrahedra";
     return s;
   }
