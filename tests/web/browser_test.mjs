@@ -402,8 +402,9 @@ try {
           ++frames;
           requestAnimationFrame(step);
         } else {
-          done({ frames, seconds: (now - start) / 1000, width: window.forensim.stage.canvas.width,
-                 height: window.forensim.stage.canvas.height });
+          const { stage } = window.forensim;
+          done({ frames, seconds: (now - start) / 1000, width: stage.canvas.width, height: stage.canvas.height,
+                 renderer: stage.webgl.name, antialias: stage.antialias });
         }
       };
       requestAnimationFrame(step);
@@ -412,8 +413,8 @@ try {
     const fps = await frameRate(true, 3);
     console.log(`measured: ${(fps.frames / fps.seconds).toFixed(1)} frames/s while scrubbing ${fpsResolution}^2 ` +
                 `maps (${fps.frames} frames in ${fps.seconds.toFixed(1)} s; ${(still.frames / still.seconds).toFixed(1)} ` +
-                `frames/s with the slider still; canvas ${fps.width}x${fps.height}, headless chromium, SwiftShader ` +
-                'CPU WebGL)');
+                `frames/s with the slider still; canvas ${fps.width}x${fps.height}, ` +
+                `${fps.antialias ? '' : 'no '}multisampling, headless chromium: ${fps.renderer || 'unknown renderer'})`);
   }
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
   writeFileSync(join(served, 'browser_test_done'), 'ok');
