@@ -3,8 +3,9 @@
 // surface run with an "uncertainty" field, drives Debian's chromium headless through playwright-core, and
 // checks each view: the runs list, a wound run's timeline scrubbed (the wound's colour changes with time), the
 // wound editor (a stroke painted by ray cast, the timeline generated on the server and scrubbed), a
-// desiccation run stepped frame by frame and coloured by moisture, shrinkage and the skin's colour, and the
-// surface run coloured by its uncertainty. No console errors or page errors are allowed.
+// desiccation run stepped frame by frame and coloured by moisture, shrinkage and the skin's colour, the
+// surface run coloured by its uncertainty, and a run holding only a GLB. No console errors or page errors are
+// allowed.
 //
 // Golden screenshots: the 3D canvas of each view, drawn at a fixed window size from a camera preset and
 // halved, is compared with tests/golden/web/NAME.png over the pixels that show the object in either picture:
@@ -378,6 +379,17 @@ try {
   const download = page.waitForEvent('download');
   await page.click('#screenshot');
   check((await download).suggestedFilename().endsWith('.png'), 'the screenshot button saves a PNG');
+
+  // A run with only a GLB (here the server's built-in cylinder) shows it as written.
+  const glb = Buffer.from(await (await fetch(base + 'api/meshes/cylinder.glb')).arrayBuffer());
+  mkdirSync(join(served, 'glb-run'));
+  writeFileSync(join(served, 'glb-run', 'mesh.glb'), glb);
+  writeFileSync(join(served, 'glb-run', 'run.json'), JSON.stringify({ command: 'convert', outputs: ['mesh.glb'] }));
+  await open('#/run?path=glb-run');
+  await page.click('button[data-preset="front"]');
+  await settle();
+  const background = await canvasColour(0.02, 0.02, 3), glbCentre = await canvasColour();
+  check(distance(background, glbCentre) > 0.1, `a GLB-only run shows its mesh (${distance(background, glbCentre).toFixed(3)})`);
 
   // 6. The desiccation start form and the editor's default mesh load without errors.
   await open('#/desiccation');

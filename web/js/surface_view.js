@@ -20,6 +20,7 @@ export async function showSurfaceRun(ctx, path) {
     ctx.stage.add(gltf.scene);
     ctx.stage.fit(gltf.scene, 'front');
     html(ctx.panel, `<div class="muted">${escapeHtml(glbs[0])} as written (no per-vertex fields to colour)</div>`);
+    cutControls(ctx.panel, ctx.stage);
   } else {
     const controls = html(ctx.panel, '<label>Surface <select id="surface"></select></label>');
     const select = controls.querySelector('#surface');
