@@ -1,6 +1,8 @@
 #pragma once
-/// A desiccation frame (one .vtu of a mummify run's .pvd series) as the browser draws it: the outer surface
-/// of the tet volume with the per-node fields sampled at its vertices, in a compact JSON object.
+/// A frame of a run as the browser draws it: one .vtu of a mummify run's series (a tetrahedral volume frame
+/// of desiccation.pvd, drawn as its outer surface, or a triangle skin frame of skin.pvd) or any other triangle
+/// .vtu a run writes (a reconstructed skin with an "uncertainty" field), with its per-vertex fields, in a
+/// compact JSON object.
 
 #include <nlohmann/json.hpp>
 
@@ -8,14 +10,18 @@
 
 namespace forensim {
 
-/// Reads the tetrahedral .vtu at `vtu_path` and returns its boundary surface:
-///   {"vertex_count": #S, "triangle_count": #F,
-///    "positions": [3 #S] current node positions, mm (rounded to 1 um),
-///    "rest_positions": [3 #S] positions minus the "displacement" field (when present), mm,
+/// Reads the .vtu at `vtu_path`, of tetrahedra (VTK_TETRA) or triangles (VTK_TRIANGLE), and returns its surface
+/// (the boundary of a tet volume; a triangle mesh as it is):
+///   {"vertex_count": #S, "triangle_count": #F, "cells": "tetrahedra" | "triangles",
+///    "positions": [3 #S] current vertex positions, mm (rounded to 1 um),
+///    "rest_positions": [3 #S] positions minus the "displacement" vector field, mm (only when the frame has one),
 ///    "triangles": [3 #F] vertex indices, counter-clockwise seen from outside,
-///    "scalars": {name: [#S]} every per-node scalar field (moisture, water_percent, ...),
-///    "ranges": {name: [min, max]} over the surface}
-/// Throws what read_vtu throws (InputError for malformed files, IoError when unreadable).
+///    "scalars": {name: [#S]} every per-vertex scalar field (moisture, water_percent, uncertainty, ...),
+///    "ranges": {name: [min, max]} of each scalar field over the surface,
+///    "vectors": {name: [3 #S]} every per-vertex 3-vector field but "displacement" (a skin frame's linear RGB
+///               "colour")}
+/// Throws InputError for a malformed file or one of other cells (naming the file and what is wrong), IoError when
+/// it cannot be read.
 nlohmann::json frame_surface_json(const std::filesystem::path& vtu_path);
 
 }  // namespace forensim

@@ -89,12 +89,12 @@ nlohmann::json describe_run(const fs::path& root, const fs::path& folder) {
   for (const auto& [path, bytes] : found) files.push_back({{"path", path}, {"bytes", bytes}});
   out["files"] = files;
   if (fs::is_regular_file(folder / "timeline.json", ec)) out["timeline"] = parse_json_file(folder / "timeline.json");
-  if (fs::is_regular_file(folder / "desiccation.pvd", ec)) {
+  // A mummify run's series: the volume's frames and the skin's (the same times).
+  for (const auto& [series, key] : {std::pair{"desiccation.pvd", "frames"}, std::pair{"skin.pvd", "skin_frames"}}) {
+    if (!fs::is_regular_file(folder / series, ec)) continue;
     nlohmann::json frames = nlohmann::json::array();
-    for (const PvdEntry& e : read_pvd(folder / "desiccation.pvd")) {
-      frames.push_back({{"time_days", e.time}, {"file", e.file}});
-    }
-    out["frames"] = frames;
+    for (const PvdEntry& e : read_pvd(folder / series)) frames.push_back({{"time_days", e.time}, {"file", e.file}});
+    out[key] = frames;
   }
   return out;
 }

@@ -17,8 +17,9 @@ nlohmann::json list_runs(const std::filesystem::path& root, int max_depth = 3);
 
 /// One run: {"path", "record": run.json, "files": [{"path", "bytes"}], "kind": "wound" | "mummify" | other,
 /// plus for wound runs "timeline" (timeline.json) and for mummify runs "frames": [{"time_days", "file"}]
-/// from its .pvd}. `folder` is the resolved run folder inside `root`. Throws InputError when run.json or
-/// a listed description file is malformed, IoError when they cannot be read.
+/// from desiccation.pvd (the volume) and "skin_frames" in the same form from skin.pvd (the skin), when present}.
+/// `folder` is the resolved run folder inside `root`. Throws InputError when run.json or a listed description file is
+/// malformed, IoError when they cannot be read.
 nlohmann::json describe_run(const std::filesystem::path& root, const std::filesystem::path& folder);
 
 }  // namespace forensim

@@ -29,6 +29,31 @@ void write_cube_desiccation_run(const std::filesystem::path& folder) {
     displacement[i] = Vec3(0.1 * mesh.positions[i].x(), 0, 0);
   }
   RunFolder run(folder, "mummify");
+  // The skin: the cube's boundary as triangles over the same 8 points, shrinking by 0.1 x per frame.
+  TriMesh skin;
+  skin.positions = mesh.positions;
+  skin.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  PvdSeries skin_series(run.file("skin.pvd"));
+  for (int frame = 0; frame < 2; ++frame) {
+    TriMesh m = skin;
+    std::vector<double> moisture(8), uncertainty(8);
+    std::vector<Vec3> colour(8);
+    for (std::size_t i = 0; i < 8; ++i) {
+      m.positions[i].x() *= 1.0 - 0.1 * frame;
+      moisture[i] = 1.0 - 0.25 * frame * mesh.positions[i].x();
+      uncertainty[i] = 0.5 + mesh.positions[i].z();
+      colour[i] = Vec3(0.5, 0.25 * (1 + frame), 0.125);
+    }
+    m.vertex_fields.scalars["moisture_ratio"] = moisture;
+    m.vertex_fields.scalars["uncertainty"] = uncertainty;
+    m.vertex_fields.vectors["colour"] = colour;
+    const std::string name = "skin/frame_000" + std::to_string(frame) + ".vtu";
+    write_vtu(run.file(name), m);
+    run.add_output(name);
+    skin_series.add(frame * 2.0, name);
+  }
+  run.add_output("skin.pvd");
   PvdSeries series(run.file("desiccation.pvd"));
   for (int frame = 0; frame < 2; ++frame) {
     TetMesh m = mesh;

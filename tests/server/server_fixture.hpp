@@ -19,7 +19,9 @@
 namespace forensim::test {
 
 /// Unit cube (mm) in six positively oriented tets, with node fields "water_percent" (= 10 x) and
-/// "displacement" (= (0.1 x, 0, 0)), written as frames 0 and 1 of a mummify-like run in `folder`.
+/// "displacement" (= (0.1 x, 0, 0)), written as frames 0 and 1 of a mummify-like run in `folder`; beside it a skin
+/// series (skin.pvd): the cube's 12 boundary triangles over the same 8 points, x scaled by 0.9 in frame 1, with
+/// "moisture_ratio" (1 - 0.25 frame x), "uncertainty" (0.5 + z) and "colour" ((0.5, 0.25 (1 + frame), 0.125)).
 void write_cube_desiccation_run(const std::filesystem::path& folder);
 
 /// A server over `served` with the wound and mummify job kinds; started on a free port.

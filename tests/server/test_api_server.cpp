@@ -120,6 +120,9 @@ TEST_F(Api, ListsRunsAndDescribesOne) {
   ASSERT_EQ(run["frames"].size(), 2u);
   EXPECT_EQ(run["frames"][1]["time_days"], 2.0);
   EXPECT_EQ(run["frames"][1]["file"], "volume/frame_0001.vtu");
+  ASSERT_EQ(run["skin_frames"].size(), 2u);
+  EXPECT_EQ(run["skin_frames"][1]["time_days"], 2.0);
+  EXPECT_EQ(run["skin_frames"][1]["file"], "skin/frame_0001.vtu");
   std::set<std::string> files;
   for (const auto& f : run["files"]) files.insert(f["path"].get<std::string>());
   EXPECT_TRUE(files.count("run.json") && files.count("desiccation.pvd") && files.count("volume/frame_0000.vtu"));
@@ -181,11 +184,45 @@ TEST_F(Api, FrameIsTheBoundaryWithFields) {
     EXPECT_NEAR(water[v].get<double>(), 10.0 * x0, 1e-3);
   }
   EXPECT_NEAR(f["ranges"]["water_percent"][1].get<double>(), 10.0, 1e-9);
+  EXPECT_EQ(f["cells"], "tetrahedra");
+  EXPECT_FALSE(f["vectors"].contains("displacement"));  // served as rest_positions
   EXPECT_EQ(error_of(c.Get("/api/frame"), 400)["field"], "path");
   error_of(c.Get("/api/frame?path=dry/run.json"), 400);
   error_of(c.Get("/api/frame?path=dry/volume/none.vtu"), 404);
   std::ofstream(served / "dry" / "bad.vtu") << "<VTKFile>";
   error_of(c.Get("/api/frame?path=dry/bad.vtu"), 400);
+}
+
+TEST_F(Api, FrameOfATriangleSkinKeepsItsVerticesAndFields) {
+  test::TestServer s(served);
+  auto c = s.client();
+  const auto f = body_json(c.Get("/api/frame?path=dry/skin/frame_0001.vtu"));
+  ASSERT_TRUE(f.is_object());
+  EXPECT_EQ(f["cells"], "triangles");
+  ASSERT_EQ(f["vertex_count"], 8);
+  ASSERT_EQ(f["triangle_count"], 12);
+  EXPECT_FALSE(f.contains("rest_positions"));  // no displacement: the viewer measures against the first frame
+  EXPECT_EQ(f["triangles"][6], 4);             // the file's order is kept
+  EXPECT_EQ(f["triangles"][8], 7);
+  for (std::size_t v = 0; v < 8; ++v) {
+    const double x = (v & 1) ? 1.0 : 0.0, z = (v & 4) ? 1.0 : 0.0;
+    EXPECT_NEAR(f["positions"][3 * v].get<double>(), 0.9 * x, 1e-9);
+    EXPECT_NEAR(f["scalars"]["moisture_ratio"][v].get<double>(), 1.0 - 0.25 * x, 1e-9);
+    EXPECT_NEAR(f["scalars"]["uncertainty"][v].get<double>(), 0.5 + z, 1e-9);
+    EXPECT_NEAR(f["vectors"]["colour"][3 * v + 1].get<double>(), 0.5, 1e-9);
+  }
+  EXPECT_NEAR(f["ranges"]["uncertainty"][0].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(f["ranges"]["uncertainty"][1].get<double>(), 1.5, 1e-9);
+  // A malformed triangle file is reported by the triangle reader (its cells were not tets).
+  std::string text = read_file(served / "dry" / "skin" / "frame_0000.vtu");
+  const std::string key = "Name=\"connectivity\"";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, key.size(), "Name=\"connections\"");
+  std::ofstream(served / "dry" / "skin_bad.vtu") << text;
+  const auto e = error_of(c.Get("/api/frame?path=dry/skin_bad.vtu"), 400);
+  ASSERT_TRUE(e.is_object());
+  EXPECT_NE(e["message"].get<std::string>().find("connectivity"), std::string::npos) << e.dump();
 }
 
 TEST_F(Api, BuiltinMeshAsGlb) {

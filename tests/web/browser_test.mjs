@@ -1,19 +1,35 @@
 // Browser tests of forensim serve's front end: starts `forensim serve` on a free loopback port over a
-// scratch folder holding a small wound run and a small desiccation run (made by the forensim executable),
-// drives Debian's chromium headless through playwright-core, and checks each view: the runs list, a wound
-// run's timeline scrubbed (the wound's colour changes with time), the wound editor (a stroke painted by ray
-// cast, the timeline generated on the server and scrubbed), and a desiccation run stepped frame by frame.
-// No console errors or page errors are allowed. Measured and printed, not asserted: frames per second while
-// scrubbing. Screenshots go to --shots DIR when given.
+// scratch folder holding a small wound run, a small desiccation run (made by the forensim executable) and a
+// surface run with an "uncertainty" field, drives Debian's chromium headless through playwright-core, and
+// checks each view: the runs list, a wound run's timeline scrubbed (the wound's colour changes with time), the
+// wound editor (a stroke painted by ray cast, the timeline generated on the server and scrubbed), a
+// desiccation run stepped frame by frame and coloured by moisture, shrinkage and the skin's colour, the
+// surface run coloured by its uncertainty, and a run holding only a GLB. No console errors or page errors are
+// allowed.
+//
+// Golden screenshots: the 3D canvas of each view, drawn at a fixed window size from a camera preset and
+// halved, is compared with tests/golden/web/NAME.png over the pixels that show the object in either picture:
+// it passes when their mean absolute difference is at most 3 (of 255) and at most 2 % of them differ by more
+// than 32 in a channel (two different views of the same arm differ by 15 and 18 %). Headless chromium
+// draws WebGL with SwiftShader (on the CPU), so the pictures are stable on one machine type. Regenerate the
+// goldens after an intended change of the views with
+//   FORENSIM_UPDATE_GOLDENS=1 node tests/web/browser_test.mjs --forensim build/release/bin/forensim --web web
+// (or FORENSIM_UPDATE_GOLDENS=1 ctest --test-dir build/release -R web_browser) and commit them.
+//
+// Measured and printed, not asserted: frames per second while the time slider of a 2048^2 wound map set is
+// moved every frame (requestAnimationFrame callbacks counted over 3 s; --fps-resolution N to change the
+// maps' size, 0 to skip). Screenshots of every view go to --shots DIR when given.
 //
 //   node tests/web/browser_test.mjs --forensim build/release/bin/forensim --web web [--shots DIR]
+//        [--goldens tests/golden/web] [--fps-resolution 2048]
 // Exit codes: 0 pass, 1 fail, 77 skipped (no chromium or no playwright-core).
 
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
 
 const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, a, i, all) => {
   if (a.startsWith('--')) pairs.push([a.slice(2), all[i + 1]]);
@@ -22,6 +38,9 @@ const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, a, i, all) 
 const forensim = resolve(args.forensim || 'build/release/bin/forensim');
 const web = resolve(args.web || 'web');
 const chromiumPath = args.chromium || '/usr/bin/chromium';
+const goldens = resolve(args.goldens || join(dirname(fileURLToPath(import.meta.url)), '../golden/web'));
+const updateGoldens = ['1', 'yes', 'true'].includes(process.env.FORENSIM_UPDATE_GOLDENS || '');
+const fpsResolution = Number(args['fps-resolution'] ?? 2048);
 const SKIP = 77;
 
 function skip(why) {
@@ -48,6 +67,53 @@ function run(argv) {
   if (r.status !== 0) throw new Error(`forensim ${argv.join(' ')} failed (${r.status}): ${r.stderr}`);
 }
 
+// The same in the background (the large wound run for the frame rate is made while the views are tested).
+function runLater(argv) {
+  return new Promise((ok, fail) => {
+    const child = spawn(forensim, argv, { stdio: ['ignore', 'ignore', 'pipe'] });
+    let err = '';
+    child.stderr.on('data', (d) => { err += d; });
+    child.on('exit', (code) => (code === 0 ? ok() : fail(new Error(`forensim ${argv.join(' ')} failed (${code}): ${err}`))));
+  });
+}
+
+// A run folder as a reconstruction writes its skin: run.json and skin.vtu (ASCII VTK triangles, mm), a
+// head-sized ellipsoid (90 x 110 x 120 mm semi-axes, 48 x 24 segments) with the point field "uncertainty"
+// (mm), growing from 1 mm at the front (-y) to 4 mm at the back.
+function writeSurfaceRun(folder) {
+  mkdirSync(folder, { recursive: true });
+  const rings = 24, segments = 48, points = [], uncertainty = [], triangles = [];
+  for (let i = 0; i <= rings; ++i) {
+    const theta = Math.PI * i / rings;
+    for (let j = 0; j < segments; ++j) {
+      const phi = 2 * Math.PI * j / segments;
+      const d = [Math.sin(theta) * Math.cos(phi), Math.sin(theta) * Math.sin(phi), Math.cos(theta)];
+      points.push(90 * d[0], 110 * d[1], 120 * d[2]);
+      uncertainty.push(2.5 + 1.5 * d[1]);
+    }
+  }
+  const at = (i, j) => i * segments + (j % segments);
+  for (let i = 0; i < rings; ++i) {
+    for (let j = 0; j < segments; ++j) {
+      triangles.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  const cells = triangles.length / 3, n = points.length / 3;
+  const offsets = Array.from({ length: cells }, (_, c) => 3 * (c + 1));
+  writeFileSync(join(folder, 'run.json'), JSON.stringify({ command: 'reconstruct', outputs: ['skin.vtu'] }));
+  writeFileSync(join(folder, 'skin.vtu'), `<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+<UnstructuredGrid><Piece NumberOfPoints="${n}" NumberOfCells="${cells}">
+<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">${points.map((x) => x.toFixed(4)).join(' ')}</DataArray></Points>
+<Cells><DataArray type="Int64" Name="connectivity" format="ascii">${triangles.join(' ')}</DataArray>
+<DataArray type="Int64" Name="offsets" format="ascii">${offsets.join(' ')}</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">${Array(cells).fill(5).join(' ')}</DataArray></Cells>
+<PointData><DataArray type="Float64" Name="uncertainty" format="ascii">${uncertainty.map((x) => x.toFixed(4)).join(' ')}</DataArray></PointData>
+</Piece></UnstructuredGrid></VTKFile>
+`);
+}
+
+const started = Date.now();
 const served = mkdtempSync(join(tmpdir(), 'forensim-web-'));
 let server, browser;
 try {
@@ -56,7 +122,13 @@ try {
        '-o', join(served, 'wound-run')]);
   run(['mummify', '--phantom', 'arm', '--size', 'small', '--days', '2', '--frames', '2', '--no-pictures',
        '-o', join(served, 'dry-run')]);
+  writeSurfaceRun(join(served, 'surface-run'));
   console.log(`runs made in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  const bigRun = fpsResolution > 0
+    ? runLater(['wound', '--builtin', 'forearm-uv', '--resolution', String(fpsResolution), '--times', '36h',
+                '--picture-size', '0', '-o', join(served, 'wound-big')]).then(() => Date.now() - t0)
+    : null;
+  if (bigRun) bigRun.catch(() => {});  // awaited (and its failure reported) at the frame-rate step
 
   server = spawn(forensim, ['serve', '--port', '0', '--web', web, served], { stdio: ['ignore', 'pipe', 'pipe'] });
   const base = await new Promise((ok, fail) => {
@@ -110,10 +182,77 @@ try {
   const distance = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
   const settle = () => page.waitForTimeout(400);
 
+  // The 3D canvas halved (a PNG data URL), compared with the golden of that name within the tolerance above.
+  const golden = async (name) => {
+    const goldenPath = join(goldens, name);
+    const want = existsSync(goldenPath) && !updateGoldens ? readFileSync(goldenPath).toString('base64') : null;
+    const r = await page.evaluate(async (wantB64) => {
+      const src = document.getElementById('canvas');
+      window.forensim.stage.renderer.render(window.forensim.stage.scene, window.forensim.stage.camera);
+      const c = document.createElement('canvas');
+      c.width = Math.round(src.width / 2);
+      c.height = Math.round(src.height / 2);
+      const g = c.getContext('2d');
+      g.drawImage(src, 0, 0, c.width, c.height);
+      const got = g.getImageData(0, 0, c.width, c.height);
+      const out = { png: c.toDataURL('image/png'), width: c.width, height: c.height };
+      if (!wantB64) return out;
+      const image = new Image();
+      image.src = 'data:image/png;base64,' + wantB64;
+      await image.decode();
+      out.goldenSize = [image.width, image.height];
+      if (image.width !== c.width || image.height !== c.height) return out;
+      const d = document.createElement('canvas');
+      d.width = image.width;
+      d.height = image.height;
+      const dg = d.getContext('2d');
+      dg.drawImage(image, 0, 0);
+      const ref = dg.getImageData(0, 0, d.width, d.height).data;
+      // Over the pixels that show the object in either picture (off the background, the corner's colour, by
+      // more than 8), so a small object's change is not diluted by the empty background around it.
+      const bg = [ref[0], ref[1], ref[2]];
+      let sum = 0, differing = 0, object = 0;
+      for (let i = 0; i < ref.length; i += 4) {
+        let worst = 0, off = 0;
+        for (let k = 0; k < 3; ++k) {
+          const e = Math.abs(ref[i + k] - got.data[i + k]);
+          sum += e;
+          worst = Math.max(worst, e);
+          off = Math.max(off, Math.abs(ref[i + k] - bg[k]), Math.abs(got.data[i + k] - bg[k]));
+        }
+        if (off > 8) ++object;
+        if (worst > 32) ++differing;
+      }
+      out.mean = sum / (3 * Math.max(1, object));
+      out.share = differing / Math.max(1, object);
+      out.object = object / (ref.length / 4);
+      return out;
+    }, want);
+    const png = Buffer.from(r.png.split(',')[1], 'base64');
+    if (shots) writeFileSync(join(shots, 'canvas_' + name), png);
+    if (!want) {
+      if (!updateGoldens) {
+        check(false, `golden ${name}: none in ${goldens} (make it with FORENSIM_UPDATE_GOLDENS=1)`);
+        return;
+      }
+      mkdirSync(goldens, { recursive: true });
+      writeFileSync(goldenPath, png);
+      console.log(`golden ${name} written (${r.width}x${r.height}, ${(png.length / 1024).toFixed(0)} KiB)`);
+      return;
+    }
+    if (r.mean === undefined) {
+      check(false, `golden ${name}: size ${r.width}x${r.height}, golden ${r.goldenSize.join('x')}`);
+      return;
+    }
+    check(r.mean <= 3 && r.share <= 0.02, `golden ${name}: over the object's pixels (${(100 * r.object).toFixed(0)} % ` +
+          `of the picture) mean difference ${r.mean.toFixed(2)} of 255, ${(100 * r.share).toFixed(2)} % differ by ` +
+          'more than 32');
+  };
+
   // 1. The runs list.
   await open('#/runs');
   const runs = await page.$$eval('#runs a', (as) => as.map((a) => a.dataset.run));
-  check(runs.includes('wound-run') && runs.includes('dry-run'), `runs listed: ${runs.join(', ')}`);
+  check(['wound-run', 'dry-run', 'surface-run'].every((r) => runs.includes(r)), `runs listed: ${runs.join(', ')}`);
   await shot('runs.png');
 
   // 2. A wound run: its timeline scrubbed in the shader. The wound is the middle of the cylinder's UV square,
@@ -131,15 +270,10 @@ try {
   check(/h|days/.test(label), `time shown in real units: "${label}"`);
   check(distance(fresh, scab) > 0.03, `wound colour changes from 1 h to 36 h (${distance(fresh, scab).toFixed(3)})`);
   await shot('wound_run.png');
-  // Scrubbing by the slider itself; frame rate measured while it moves.
-  const fpsBefore = Date.now();
-  for (let v = 0; v <= 1000; v += 100) {
-    await page.locator('#time-slider').fill(String(v));
-  }
-  const scrubSeconds = (Date.now() - fpsBefore) / 1000;
-  const fps = await page.evaluate(() => window.forensim.stage.fps());
-  console.log(`measured: ${fps.toFixed(1)} frames/s while scrubbing (11 slider moves in ${scrubSeconds.toFixed(2)} s,` +
-              ' software WebGL)');
+  await golden('wound_run.png');
+  // Scrubbing by the slider itself.
+  for (let v = 0; v <= 1000; v += 250) await page.locator('#time-slider').fill(String(v));
+  check(Number(await page.evaluate(() => document.body.dataset.time)) > 36 * 3600, 'the slider at its end shows the end');
   await page.click('#play');
   await page.waitForTimeout(700);
   await page.click('#play');
@@ -168,6 +302,7 @@ try {
   check(distance(painted, late) > 0.01, `the wound changes by the end of the timeline (${distance(painted, late).toFixed(3)})`);
   await woundAt(36 * 3600);
   await shot('wound_editor.png');
+  await golden('wound_editor.png');
 
   // 4. Desiccation: step the run's frames; the surface colour (water) changes.
   await open('#/desiccation?path=dry-run');
@@ -183,15 +318,116 @@ try {
   const frameLabel = await page.textContent('#frame-label');
   check(/day 2/.test(frameLabel), `frame time in days: "${frameLabel}"`);
   await shot('desiccation.png');
+  await golden('desiccation_moisture.png');
+  const legendTitle = () => page.textContent('#legend-title');
+  check(/moisture.*%/.test(await legendTitle()), `moisture legend with its unit: "${await legendTitle()}"`);
+  // Shrinkage: the local area lost against the rest shape, 0 at frame 0 and growing as the arm dries.
+  const colourBy = async (mode) => {
+    await page.selectOption('#colour-mode', mode);
+    await page.waitForFunction((m) => document.body.dataset.colour === m, mode);
+    await settle();
+  };
+  await colourBy('shrinkage');
+  const shrinkHigh = Number(await page.textContent('#range-hi'));
+  check(/shrinkage.*% of the rest area/.test(await legendTitle()) && shrinkHigh > 0,
+        `shrinkage legend: "${await legendTitle()}", up to ${shrinkHigh} %`);
+  const shrunk = await canvasColour(0.5, 0.5, 20);
+  await page.click('#prev-frame');
+  await page.click('#prev-frame');
+  await page.waitForFunction(() => document.body.dataset.frame === '0');
+  await settle();
+  const unshrunk = await canvasColour(0.5, 0.5, 20);
+  check(distance(shrunk, unshrunk) > 0.01, `shrinkage shows between frames 0 and 2 (${distance(shrunk, unshrunk).toFixed(3)})`);
+  await page.click('#next-frame');
+  await page.click('#next-frame');
+  await page.waitForFunction(() => document.body.dataset.frame === '2');
+  await golden('desiccation_shrinkage.png');
+  await shot('desiccation_shrinkage.png');
+  // The skin series in its own colour.
+  await page.selectOption('#surface', 'skin');
+  await page.waitForFunction(() => document.body.dataset.surface === 'skin');
+  await colourBy('colour');
+  const skinColour = await canvasColour(0.5, 0.5, 20);
+  check(distance(skinColour, shrunk) > 0.02, `the skin in its colour differs from the shrinkage map (${distance(skinColour, shrunk).toFixed(3)})`);
+  await golden('desiccation_skin.png');
+  await page.selectOption('#surface', 'volume');
+  await page.waitForFunction(() => document.body.dataset.surface === 'volume');
+  await colourBy('moisture');
   await page.click('#cut-on');
   await page.locator('#cut-at').fill('300');
   await settle();
   const cutOpen = await canvasColour(0.5, 0.5, 20);
   check(distance(cutOpen, dry) > 0.005, `the cutting plane changes the view (${distance(cutOpen, dry).toFixed(3)})`);
 
-  // 5. The desiccation start form and the editor's default mesh load without errors.
+  // 5. A surface run with an uncertainty field: coloured by it, with the unit in the legend.
+  await open('#/run?path=surface-run');
+  check(await page.evaluate(() => document.body.dataset.colour) === 'uncertainty', 'uncertainty shown first');
+  check(/uncertainty, mm/.test(await legendTitle()) && Number(await page.textContent('#range-hi')) > 3.9,
+        `uncertainty legend: "${await legendTitle()}" to ${await page.textContent('#range-hi')}`);
+  await page.click('button[data-preset="front"]');
+  await settle();
+  const certain = await canvasColour();
+  await page.click('button[data-preset="back"]');
+  await settle();
+  const uncertain = await canvasColour();
+  check(uncertain[0] > certain[0] + 0.2, `front (1 mm) and back (4 mm) in different colours (${certain.map((c) => c.toFixed(2))}` +
+        ` / ${uncertain.map((c) => c.toFixed(2))})`);
+  await page.click('button[data-preset="oblique"]');
+  await settle();
+  await golden('surface_uncertainty.png');
+  await shot('surface_uncertainty.png');
+  const download = page.waitForEvent('download');
+  await page.click('#screenshot');
+  check((await download).suggestedFilename().endsWith('.png'), 'the screenshot button saves a PNG');
+
+  // A run with only a GLB (here the server's built-in cylinder) shows it as written.
+  const glb = Buffer.from(await (await fetch(base + 'api/meshes/cylinder.glb')).arrayBuffer());
+  mkdirSync(join(served, 'glb-run'));
+  writeFileSync(join(served, 'glb-run', 'mesh.glb'), glb);
+  writeFileSync(join(served, 'glb-run', 'run.json'), JSON.stringify({ command: 'convert', outputs: ['mesh.glb'] }));
+  await open('#/run?path=glb-run');
+  await page.click('button[data-preset="front"]');
+  await settle();
+  const background = await canvasColour(0.02, 0.02, 3), glbCentre = await canvasColour();
+  check(distance(background, glbCentre) > 0.1, `a GLB-only run shows its mesh (${distance(background, glbCentre).toFixed(3)})`);
+
+  // 6. The desiccation start form and the editor's default mesh load without errors.
   await open('#/desiccation');
   await open('#/wound', 180000);
+
+  // 7. Measured, not asserted: the frame rate while the time slider of a large map set moves every frame.
+  if (bigRun) {
+    const madeAfter = await bigRun;
+    console.log(`${fpsResolution}^2 wound run ready ${(madeAfter / 1000).toFixed(0)} s after the start`);
+    await open('#/run?path=wound-big', 300000);
+    // requestAnimationFrame callbacks over `seconds`, the slider moved (an input event) in each when `scrub`.
+    const frameRate = (scrub, seconds) => page.evaluate(([scrubbing, ms]) => new Promise((done) => {
+      const slider = document.getElementById('time-slider');
+      let frames = 0, start = 0;
+      const step = (now) => {
+        if (!start) start = now;
+        if (scrubbing) {
+          slider.value = String(Math.round(1000 * (((now - start) / ms) % 1)));
+          slider.dispatchEvent(new Event('input'));
+        }
+        if (now - start < ms) {
+          ++frames;
+          requestAnimationFrame(step);
+        } else {
+          const { stage } = window.forensim;
+          done({ frames, seconds: (now - start) / 1000, width: stage.canvas.width, height: stage.canvas.height,
+                 renderer: stage.webgl.name, antialias: stage.antialias });
+        }
+      };
+      requestAnimationFrame(step);
+    }), [scrub, 1000 * seconds]);
+    const still = await frameRate(false, 2);
+    const fps = await frameRate(true, 3);
+    console.log(`measured: ${(fps.frames / fps.seconds).toFixed(1)} frames/s while scrubbing ${fpsResolution}^2 ` +
+                `maps (${fps.frames} frames in ${fps.seconds.toFixed(1)} s; ${(still.frames / still.seconds).toFixed(1)} ` +
+                `frames/s with the slider still; canvas ${fps.width}x${fps.height}, ` +
+                `${fps.antialias ? '' : 'no '}multisampling, headless chromium: ${fps.renderer || 'unknown renderer'})`);
+  }
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
   writeFileSync(join(served, 'browser_test_done'), 'ok');
 } catch (e) {
@@ -202,5 +438,6 @@ try {
   if (server) server.kill('SIGTERM');
   if (failures.length === 0) rmSync(served, { recursive: true, force: true });
 }
-console.log(failures.length ? `${failures.length} failure(s)` : 'all browser checks passed');
+console.log(`${failures.length ? `${failures.length} failure(s)` : 'all browser checks passed'} in ` +
+            `${((Date.now() - started) / 1000).toFixed(0)} s`);
 process.exit(failures.length ? 1 : 0);

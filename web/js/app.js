@@ -5,6 +5,7 @@
 import { Stage } from './stage.js';
 import { showDesiccation } from './desiccation_view.js';
 import { showRuns } from './runs_view.js';
+import { showSurfaceRun } from './surface_view.js';
 import { showWoundEditor, showWoundRun } from './wound_view.js';
 import { describeRun } from './api.js';
 
@@ -18,7 +19,8 @@ async function showRun(ctx, params) {
   const path = params.get('path') || '';
   const run = await describeRun(path);
   if (run.kind === 'mummify') return showDesiccation(ctx, params);
-  return showWoundRun(ctx, path);
+  if (run.timeline) return showWoundRun(ctx, path);
+  return showSurfaceRun(ctx, path);
 }
 
 const views = { runs: showRuns, run: showRun, wound: showWoundEditor, desiccation: showDesiccation };

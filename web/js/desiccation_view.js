@@ -1,36 +1,80 @@
-// Desiccation: a mummify run's frames stepped on its surface in false colour (water, moisture), with the
-// original shape as a ghost; and a form that starts a run with an environment and a duration and shows its
-// frames as they are written.
+// Desiccation: a mummify run's frames stepped on its surface (the volume's outer surface or the skin) in false
+// colour (moisture, shrinkage, any field) or the skin's own colour, with the original shape as a ghost; and a
+// form that starts a run with an environment and a duration and shows its frames as they are written.
 
 import * as THREE from 'three';
 import { describeRun, followJob, frameSurface, listRuns, startJob } from './api.js';
 import { cameraControls, cutControls } from './stage.js';
 import { steppedTimeline } from './timeline_control.js';
 import { formatDays } from './time_units.js';
+import { colourModes, coloursOf, legend, rangeOf, seriesRange } from './false_colour.js';
 import { escapeHtml, html } from './util.js';
 
-// Dry (brown) to wet (blue) through straw yellow.
-const STOPS = [[0.545, 0.145, 0.0], [0.941, 0.753, 0.314], [0.173, 0.498, 0.722]];
-
-export function falseColour(x) {
-  const t = Math.min(1, Math.max(0, x)) * (STOPS.length - 1);
-  const i = Math.min(STOPS.length - 2, Math.floor(t)), f = t - i;
-  return STOPS[i].map((c, k) => c + (STOPS[i + 1][k] - c) * f);
-}
-
-function geometryOf(frame, positions, field, range) {
+/// A BufferGeometry of a frame's surface at `positions` (mm) with per-vertex `colours` (linear RGB).
+export function surfaceGeometry(frame, positions, colours) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
   g.setIndex(frame.triangles);
-  const values = frame.scalars[field] || [];
-  const colours = new Float32Array(3 * frame.vertex_count);
-  const span = range[1] - range[0];
-  for (let v = 0; v < frame.vertex_count; ++v) {
-    colours.set(falseColour(span > 0 ? (values[v] - range[0]) / span : 1), 3 * v);
-  }
-  g.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
+  if (colours) g.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
   g.computeVertexNormals();
   return g;
+}
+
+/// Colours a series of surfaces (frames of one mesh) by a chosen mode: the "Colour" menu, the legend, and one
+/// range per mode over the series' first and last frames, so colours compare across frames.
+export class FrameColouring {
+  /// `load(i)` resolves frame i of the series; `onChange()` redraws.
+  constructor(parent, onChange) {
+    this.box = html(parent, '<label>Colour <select id="colour-mode"></select></label>');
+    this.select = this.box.querySelector('#colour-mode');
+    this.legend = legend(this.box);
+    this.select.onchange = () => onChange();
+  }
+
+  /// Switches to a series: its frames from `load`, `count` of them; keeps the chosen mode when it has it.
+  async setSeries(load, count) {
+    this.load = load;
+    this.count = count;
+    this.ranges = new Map();
+    this.first = await load(0);
+    this.last = await load(count - 1);
+    const keep = this.select.value;
+    this.modes = colourModes(this.first);
+    this.select.innerHTML = '';
+    for (const m of this.modes) this.select.add(new Option(m.label, m.id));
+    const ids = this.modes.map((m) => m.id);
+    this.select.value = [keep, 'moisture', 'uncertainty'].find((id) => ids.includes(id)) || ids[0];
+  }
+
+  get mode() {
+    return this.modes.find((m) => m.id === this.select.value) || this.modes[0];
+  }
+
+  /// The rest shape of `frame`: its own rest positions, else the series' first frame.
+  restOf(frame) {
+    return frame.rest_positions || this.first.positions;
+  }
+
+  range(mode) {
+    if (!this.ranges.has(mode.id)) {
+      const a = rangeOf(mode.values(this.first, this.restOf(this.first)));
+      const b = rangeOf(mode.values(this.last, this.restOf(this.last)));
+      this.ranges.set(mode.id, seriesRange(mode.id, a, b));
+    }
+    return this.ranges.get(mode.id);
+  }
+
+  /// Per-vertex linear RGB of `frame` in the chosen mode; updates the legend.
+  colours(frame) {
+    const mode = this.mode;
+    if (mode.id === 'colour') {
+      this.legend.show(mode, [0, 1]);
+      return Float32Array.from(frame.vectors.colour);
+    }
+    const range = this.range(mode);
+    this.legend.show(mode, range);
+    return coloursOf(mode.values(frame, this.restOf(frame)), range, mode.map, frame.vertex_count);
+  }
 }
 
 async function showRun(ctx, path, job) {
@@ -41,66 +85,72 @@ async function showRun(ctx, path, job) {
     `${run.frames.length} frames` +
     (facts.mass_percent ? `; at the end mass ${facts.mass_percent.toFixed(1)} %, water ` +
       `${facts.water_percent.toFixed(1)} %, volume ${facts.volume_percent.toFixed(1)} % of initial` : '') + '</div>');
-  const controls = html(ctx.panel, `<label>Field <select id="field"></select></label>
-    <div class="legend"></div><div class="row muted"><span id="range-lo"></span><span style="margin-left:auto"
-    id="range-hi"></span></div><label><input type="checkbox" id="ghost" checked> original shape</label>`);
+  const series = { volume: run.frames };
+  if (run.skin_frames && run.skin_frames.length) series.skin = run.skin_frames;
+  const controls = html(ctx.panel, `<label>Surface <select id="surface"><option value="volume">volume (outer
+    surface)</option>${series.skin ? '<option value="skin">skin</option>' : ''}</select></label>`);
+  const surfaceSelect = controls.querySelector('#surface');
   const cache = new Map();
-  const load = async (i) => {
-    if (!cache.has(i)) cache.set(i, frameSurface(`${path}/${run.frames[i].file}`));
-    return cache.get(i);
+  const loader = (name) => (i) => {
+    const key = `${name}:${i}`;
+    if (!cache.has(key)) cache.set(key, frameSurface(`${path}/${series[name][i].file}`));
+    return cache.get(key);
   };
-  const [first, last] = await Promise.all([load(0), load(run.frames.length - 1)]);
-  // One range over the run (its first and last frames), so colours compare across frames.
-  const rangeOf = (field) => {
-    const a = first.ranges[field] || [0, 1], b = last.ranges[field] || a;
-    return [Math.min(a[0], b[0]), Math.max(a[1], b[1])];
-  };
-  const fields = Object.keys(first.scalars);
-  const select = controls.querySelector('#field');
-  for (const f of fields) select.add(new Option(f, f));
-  if (fields.includes('water_percent')) select.value = 'water_percent';
+  let shown = 0, cut = null, current = 'volume';
+  const colouring = new FrameColouring(controls, () => draw(shown));
+  html(controls, '<label><input type="checkbox" id="ghost" checked> original shape</label>');
   const material = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.8, side: THREE.DoubleSide });
   const mesh = new THREE.Mesh(new THREE.BufferGeometry(), material);
   mesh.scale.setScalar(0.001);  // mm to m, as the wound views
-  const ghost = new THREE.Mesh(geometryOf(first, first.rest_positions, select.value, [0, 1]),
+  const ghost = new THREE.Mesh(new THREE.BufferGeometry(),
     new THREE.MeshBasicMaterial({ color: 0xffffff, wireframe: true, transparent: true, opacity: 0.08 }));
   ghost.scale.setScalar(0.001);
   ctx.stage.add(mesh);
   ctx.stage.add(ghost);
   controls.querySelector('#ghost').onchange = (e) => { ghost.visible = e.target.checked; };
-  let shown = 0, cut = null;
+  const frames = () => series[current];
   const draw = async (i) => {
-    const frame = await load(i);
-    const field = select.value;
-    const range = rangeOf(field);
-    controls.querySelector('#range-lo').textContent = range[0].toPrecision(3);
-    controls.querySelector('#range-hi').textContent = range[1].toPrecision(3);
+    const frame = await loader(current)(i);
     mesh.geometry.dispose();
-    mesh.geometry = geometryOf(frame, frame.positions, field, range);
+    mesh.geometry = surfaceGeometry(frame, frame.positions, colouring.colours(frame));
     if (cut) cut.apply();
     shown = i;
     document.body.dataset.frame = String(i);
-    ctx.overlay.textContent = formatDays(run.frames[i].time_days);
+    document.body.dataset.colour = colouring.mode.id;
+    ctx.overlay.textContent = formatDays(frames()[i].time_days);
   };
-  select.onchange = () => draw(shown);
+  const useSeries = async (name) => {
+    current = name;
+    await colouring.setSeries(loader(name), frames().length);
+    ghost.geometry.dispose();
+    ghost.geometry = surfaceGeometry(colouring.first, colouring.restOf(colouring.first), null);
+    document.body.dataset.surface = name;
+  };
+  await useSeries('volume');
   const timeline = steppedTimeline(ctx.panel, ctx.stage, {
-    count: run.frames.length,
-    labelOf: (i) => `${formatDays(run.frames[i].time_days)} (frame ${i + 1} of ${run.frames.length})`,
+    count: frames().length,
+    labelOf: (i) => `${formatDays(frames()[i].time_days)} (frame ${i + 1} of ${frames().length})`,
     onStep: draw,
   });
+  surfaceSelect.onchange = async () => {
+    await useSeries(surfaceSelect.value);
+    timeline.setCount(frames().length);
+    await timeline.go(Math.min(shown, frames().length - 1));
+  };
   await timeline.go(0);
   ctx.stage.fit(mesh, 'oblique');
   cameraControls(ctx.panel, ctx.stage, () => `${path.replace(/\//g, '_')}_frame${shown}.png`);
   cut = cutControls(ctx.panel, ctx.stage);
-  window.forensim.frames = { count: () => run.frames.length, go: (i) => timeline.go(i) };
+  window.forensim.frames = { count: () => frames().length, go: (i) => timeline.go(i) };
   // While its job runs, new frames appear as the run writes them.
   if (job && job.state === 'running') {
     const timer = setInterval(async () => {
       if (!document.body.contains(controls)) return clearInterval(timer);
       const fresh = await describeRun(path).catch(() => null);
       if (fresh && fresh.frames.length > run.frames.length) {
-        run.frames = fresh.frames;
-        timeline.setCount(run.frames.length);
+        series.volume = run.frames = fresh.frames;
+        if (series.skin && fresh.skin_frames) series.skin = fresh.skin_frames;
+        timeline.setCount(frames().length);
       }
     }, 2000);
   }
