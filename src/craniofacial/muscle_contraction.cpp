@@ -560,11 +560,13 @@ ContractionResult MuscleContractionSolver::solve_quasi_newton(const std::vector<
   while (force > tolerance) {
     // The region: free nodes within `margin` of an active fibre; the others are held where they are (at rest).
     std::vector<Index> node_dof(nodes, -1);
+    std::vector<std::size_t> region_nodes;
     Eigen::Index dofs = 0;
     bool whole = true;
     for (std::size_t i = 0; i < nodes; ++i) {
       if (m_node_dof[i] < 0) continue;
       if (distance[i] <= margin || margin <= 0.0) {
+        region_nodes.push_back(i);
         node_dof[i] = static_cast<Index>(dofs);
         dofs += 3;
       } else {
@@ -613,12 +615,10 @@ ContractionResult MuscleContractionSolver::solve_quasi_newton(const std::vector<
     };
     auto displaced = [&](const std::vector<Vec3>& from, const Eigen::VectorXd& step, double alpha,
                          std::vector<Vec3>& to) {
-      to = from;
-      for (std::size_t i = 0; i < nodes; ++i) {
-        const Index d = node_dof[i];
-        if (d >= 0) to[i] += alpha * step.segment<3>(d);
-      }
+      // `to` holds the held nodes already (trial starts as a copy of x; they never change).
+      for (std::size_t i : region_nodes) to[i] = from[i] + alpha * step.segment<3>(node_dof[i]);
     };
+    trial = x;
 
     Eigen::VectorXd g, trial_g, d;
     energy = evaluate(x, g);
