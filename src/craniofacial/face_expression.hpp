@@ -37,7 +37,7 @@ std::vector<double> resolve_activations(const std::vector<std::string>& muscle_n
 struct FaceExpression {
   std::string name;
   std::vector<Vec3> skin_positions;  ///< #V, mm, same order as the neutral skin
-  int newton_iterations = 0;
+  int newton_iterations = 0;         ///< iterations of the contraction solver (quasi-Newton by default)
   double seconds = 0.0;
 };
 

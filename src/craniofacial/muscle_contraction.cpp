@@ -72,6 +72,9 @@ MuscleContractionSolver::MuscleContractionSolver(const SkinMuscleModel& model, c
                 "must be at least 1");
   require_input(options.quasi_newton_history >= 1, "muscle contraction options", "quasi_newton_history",
                 "must be at least 1");
+  require_input(std::isfinite(options.region_margin_mm) && options.region_margin_mm >= 0.0,
+                "muscle contraction options", "region_margin_mm",
+                "must be finite and >= 0, got " + std::to_string(options.region_margin_mm));
   if (options.method == ContractionMethod::newton) {
     build_newton_assembly();
   } else {

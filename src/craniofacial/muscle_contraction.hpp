@@ -5,19 +5,24 @@
 /// (c: max_contraction): a linear muscle's fibres, fixed at their bony origin, pull their insertion toward
 /// it; a sphincter's closed rings shrink toward their centre. The skin's static equilibrium (the minimum of
 /// the model's spring energy over all free node positions) is found by one of two methods:
-/// - quasi-Newton (the default): L-BFGS whose initial inverse Hessian is the inverse of the model's constant
-///   "global" matrix of projective dynamics (Liu, Bargteil, O'Brien and Kavan 2013, "Fast simulation of
-///   mass-spring systems", eq. 10; Liu, Bouaziz and Kavan 2017, "Quasi-Newton methods for real-time simulation
-///   of hyperelastic materials", section 4): every spring, skull spring and attachment contributes k times its
-///   node weights (c c^T), the same for x, y and z, so it is one scalar #free-nodes matrix, independent of the
-///   activations, factored once (CHOLMOD) in the constructor; an expression then costs only back-substitutions
-///   and gradient evaluations, with an Armijo backtracking line search;
+/// - quasi-Newton (the default): L-BFGS whose initial inverse Hessian is the inverse of the model's "global"
+///   matrix of projective dynamics (Liu, Bargteil, O'Brien and Kavan 2013, "Fast simulation of mass-spring
+///   systems", eq. 10; Liu, Bouaziz and Kavan 2017, "Quasi-Newton methods for real-time simulation of
+///   hyperelastic materials", section 4): every spring, skull spring and attachment contributes k times its
+///   node weights (c c^T), the same for x, y and z, so it is one scalar matrix (one unknown per node),
+///   independent of the activations and the positions, factored once (CHOLMOD) per solve; each iteration then
+///   costs one back-substitution with three columns and one gradient evaluation, with an Armijo backtracking
+///   line search. The solve is restricted to the nodes near the active muscles (region_margin_mm) and the
+///   region grows until the nodes held outside it are in equilibrium too;
 /// - Newton with a backtracking line search (exact Hessian, projected where it is indefinite; its sparsity
-///   pattern and fill-reducing ordering computed once in the constructor, each step refactors), kept as the
-///   reference the quasi-Newton solution is checked against.
-/// Both stop on the same criterion (every free node's net force below the tolerance), so they reach the same
-/// equilibrium to within it. Deterministic at any thread count: element terms are evaluated in parallel into
-/// fixed slots and summed serially in a fixed order.
+///   pattern and fill-reducing ordering computed once in the constructor, each step refactors the full
+///   3 #N system), kept as the reference.
+/// Both stop on the same criterion: every free node's net force (the energy's gradient, on the whole model)
+/// below the tolerance. Where the equilibrium is unique they agree to within it; strong contractions compress
+/// the skin until it folds, the energy then has several minima, and the two methods may settle in different
+/// ones (the quasi-Newton one measured as low or lower; tests/craniofacial/slow_face_expression.cpp).
+/// Deterministic at any thread count: element terms are evaluated in parallel into fixed slots and summed
+/// serially in a fixed order.
 
 #include <memory>
 #include <vector>
@@ -29,7 +34,7 @@ namespace forensim {
 class SparseSpdSolver;
 
 enum class ContractionMethod {
-  quasi_newton,  ///< L-BFGS on the prefactored projective-dynamics matrix (fast; the default)
+  quasi_newton,  ///< L-BFGS preconditioned by the projective-dynamics matrix (fast; the default)
   newton         ///< projected Newton, one Cholesky refactorisation per step (the reference)
 };
 
@@ -61,10 +66,10 @@ struct ContractionResult {
 
 class MuscleContractionSolver {
  public:
-  /// Keeps a reference to `model` (it must outlive the solver). Quasi-Newton: assembles and factors the
-  /// projective-dynamics matrix; Newton: builds the Hessian pattern and its symbolic factorisation. Throws
+  /// Keeps a reference to `model` (it must outlive the solver). Quasi-Newton: builds the node graph the
+  /// solve region grows over; Newton: builds the Hessian pattern and its symbolic factorisation. Throws
   /// InputError for options out of range (max_contraction in (0, 1), iterations and history >= 1,
-  /// tolerance > 0).
+  /// tolerance > 0, region_margin_mm finite and >= 0).
   explicit MuscleContractionSolver(const SkinMuscleModel& model, const MuscleContractionOptions& options = {});
   ~MuscleContractionSolver();
   MuscleContractionSolver(const MuscleContractionSolver&) = delete;

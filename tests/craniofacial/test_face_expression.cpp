@@ -310,6 +310,11 @@ TEST(FaceExpression, RejectsBadActivationsAndNames) {
   wrong[3] = 2.0;
   EXPECT_THROW(e.solver().solve(wrong), InputError);
   EXPECT_THROW(e.solver().solve({0.5}), InputError);
+  MuscleContractionOptions bad_margin, bad_history;
+  bad_margin.region_margin_mm = -1.0;
+  bad_history.quasi_newton_history = 0;
+  EXPECT_THROW(MuscleContractionSolver(e.model(), bad_margin), InputError);
+  EXPECT_THROW(MuscleContractionSolver(e.model(), bad_history), InputError);
 }
 
 TEST(FaceExpression, MorphTargetsHoldDisplacementsAndNames) {
