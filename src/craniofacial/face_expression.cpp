@@ -138,6 +138,31 @@ std::vector<MorphTarget> expression_morph_targets(const TriMesh& neutral_skin,
   return out;
 }
 
+std::vector<MorphTarget> expression_morph_targets(const TriMesh& skin, const TriMesh& skull,
+                                                  const std::vector<MuscleShape>& muscles,
+                                                  const std::vector<std::string>& expression_names,
+                                                  const SkinMuscleModelOptions& model_options,
+                                                  const MuscleContractionOptions& contraction_options) {
+  for (std::size_t i = 0; i < expression_names.size(); ++i) {
+    expression_preset(expression_names[i]);  // unknown names throw before the model is built
+    for (std::size_t j = 0; j < i; ++j) {
+      require_input(expression_names[j] != expression_names[i], "expression names", expression_names[i], "is repeated");
+    }
+  }
+  const FaceExpressions expressions(skin, skull, muscles, model_options, contraction_options);
+  std::vector<FaceExpression> poses;
+  poses.reserve(expression_names.size());
+  for (const std::string& name : expression_names) poses.push_back(expressions.preset(name));
+  return expression_morph_targets(skin, poses);
+}
+
+std::vector<MorphTarget> expression_morph_targets(const TemplateFitResult& fit, const TriMesh& skull,
+                                                  const std::vector<std::string>& expression_names,
+                                                  const SkinMuscleModelOptions& model_options,
+                                                  const MuscleContractionOptions& contraction_options) {
+  return expression_morph_targets(fit.skin, skull, fit.muscles, expression_names, model_options, contraction_options);
+}
+
 std::vector<Vec3> track_skin_points(const TriMesh& neutral_skin, const std::vector<Vec3>& displaced_positions,
                                     const std::vector<Vec3>& points) {
   require_input(displaced_positions.size() == neutral_skin.positions.size(), "tracked skin", "displaced_positions",

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "craniofacial/fit_template.hpp"
 #include "craniofacial/muscle_contraction.hpp"
 #include "craniofacial/skin_muscle_model.hpp"
 #include "mesh_io/gltf_writer.hpp"
@@ -36,7 +37,7 @@ std::vector<double> resolve_activations(const std::vector<std::string>& muscle_n
 struct FaceExpression {
   std::string name;
   std::vector<Vec3> skin_positions;  ///< #V, mm, same order as the neutral skin
-  int newton_iterations = 0;
+  int newton_iterations = 0;         ///< iterations of the contraction solver (quasi-Newton by default)
   double seconds = 0.0;
 };
 
@@ -69,6 +70,25 @@ class FaceExpressions {
 /// vertex count differs from the skin's.
 std::vector<MorphTarget> expression_morph_targets(const TriMesh& neutral_skin,
                                                   const std::vector<FaceExpression>& expressions);
+
+/// Morph targets of the presets `expression_names` (expression_preset_names(); "neutral" gives a zero
+/// target) on a head: builds its FaceExpressions once, poses each preset and returns
+/// expression_morph_targets() of the poses, in the order given, named after the presets. `skin`, `skull`,
+/// `muscles` as for FaceExpressions. Throws InputError for an unknown or repeated name (with the closest
+/// preset), and as FaceExpressions does.
+std::vector<MorphTarget> expression_morph_targets(const TriMesh& skin, const TriMesh& skull,
+                                                  const std::vector<MuscleShape>& muscles,
+                                                  const std::vector<std::string>& expression_names,
+                                                  const SkinMuscleModelOptions& model_options = {},
+                                                  const MuscleContractionOptions& contraction_options = {});
+
+/// The same on a fitted head (TemplateFit::result()): its skin and muscles under the target `skull` (the
+/// skull the template was fitted to, mm, the head's frame). The targets index fit.skin's welded vertices:
+/// write them as the morph targets of the GltfMeshNode whose mesh is fit.skin.
+std::vector<MorphTarget> expression_morph_targets(const TemplateFitResult& fit, const TriMesh& skull,
+                                                  const std::vector<std::string>& expression_names,
+                                                  const SkinMuscleModelOptions& model_options = {},
+                                                  const MuscleContractionOptions& contraction_options = {});
 
 /// Where surface points of the neutral skin (landmarks such as ch'_L) go in an expression: each point is
 /// located on its closest neutral triangle and moved with that triangle's displaced corners (barycentric).

@@ -34,6 +34,16 @@ SpringTerm spring_term(const Vec3& x_a, const Vec3& x_b, double rest_length, dou
   return t;
 }
 
+SpringForce spring_force(const Vec3& x_a, const Vec3& x_b, double rest_length, double stiffness) {
+  SpringForce f;
+  const Vec3 d = x_a - x_b;
+  const double l = d.norm();
+  const double stretch = l - rest_length;
+  f.energy = 0.5 * stiffness * stretch * stretch;
+  if (l > 0.0) f.gradient_a = (stiffness * stretch / l) * d;
+  return f;
+}
+
 Vec3 attachment_residual(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& y, const Vec3& weights,
                          const Vec3& offset) {
   return weights(0) * x0 + weights(1) * x1 + weights(2) * x2 - y - offset;

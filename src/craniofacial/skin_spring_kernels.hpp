@@ -27,6 +27,15 @@ struct SpringTerm {
 SpringTerm spring_term(const Vec3& x_a, const Vec3& x_b, double rest_length, double stiffness, bool tension_only,
                        bool project);
 
+/// Energy and force of the spring of spring_term() without its Hessian (the quasi-Newton solver's inner loop):
+/// E = k/2 (l - L)^2 and its gradient with respect to x_a, k (l - L) (x_a - x_b) / l (the gradient with
+/// respect to x_b is its negative). Coincident nodes give zero gradient.
+struct SpringForce {
+  double energy = 0.0;
+  Vec3 gradient_a = Vec3::Zero();
+};
+SpringForce spring_force(const Vec3& x_a, const Vec3& x_b, double rest_length, double stiffness);
+
 /// Energy of a zero-length vector spring between a point on a triangle (barycentric `weights` of its corner
 /// positions x_0..x_2) and a node y, offset by the rest vector `offset`: E = k/2 |sum_i w_i x_i - y - offset|^2
 /// (the attachment of a muscle fibre node to the skin above it). Returns the residual vector

@@ -25,6 +25,16 @@ std::string sparse_solver_name(SparseSolverKind kind) {
   return "unknown";
 }
 
+void SparseSpdSolver::solve_columns(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x) {
+  if (x.rows() != rhs.rows() || x.cols() != rhs.cols()) x = Eigen::MatrixXd::Zero(rhs.rows(), rhs.cols());
+  Eigen::VectorXd column;
+  for (Eigen::Index c = 0; c < rhs.cols(); ++c) {
+    column = x.col(c);
+    solve(rhs.col(c), column);
+    x.col(c) = column;
+  }
+}
+
 namespace {
 
 class CholmodSolver final : public SparseSpdSolver {
@@ -40,6 +50,10 @@ class CholmodSolver final : public SparseSpdSolver {
     if (m_llt.info() != Eigen::Success) throw NumericError("CHOLMOD: matrix is not positive definite");
   }
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override {
+    x = m_llt.solve(rhs);
+    if (m_llt.info() != Eigen::Success) throw NumericError("CHOLMOD: solve failed");
+  }
+  void solve_columns(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x) override {
     x = m_llt.solve(rhs);
     if (m_llt.info() != Eigen::Success) throw NumericError("CHOLMOD: solve failed");
   }

@@ -37,6 +37,10 @@ class SparseSpdSolver {
   /// backends; resized and zeroed if its size is wrong) and the solution on return. Throws NumericError
   /// when an iterative backend does not reach its tolerance.
   virtual void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) = 0;
+  /// Solves A X = B for the columns of `rhs` (#n by #k) with the last factored A; `x` as in solve(), per
+  /// column. Direct backends solve all columns in one pass over the factor (cheaper than k solves); the
+  /// default solves column by column.
+  virtual void solve_columns(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x);
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }
   virtual SparseSolverKind kind() const = 0;

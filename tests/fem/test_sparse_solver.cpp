@@ -38,6 +38,28 @@ TEST_P(SparseSolverKinds, SolvesAndRefactorsWithTheSameAnalysis) {
   }
 }
 
+TEST_P(SparseSolverKinds, SolvesSeveralColumnsAtOnce) {
+  const TetMesh mesh = make_box_tet_mesh(Vec3::Zero(), Vec3(4, 3, 2), 6, 5, 4);
+  const SparsityPattern pattern(mesh.tets, mesh.vertex_count(), 1);
+  const SparseMatrix a = heat_matrix(mesh, pattern, 1.0);
+  auto solver = make_sparse_solver(GetParam(), 1e-12);
+  solver->analyse(a);
+  solver->factor(a);
+  const auto n = static_cast<Eigen::Index>(mesh.vertex_count());
+  Eigen::MatrixXd expected(n, 3);
+  expected.col(0) = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  expected.col(1) = Eigen::VectorXd::Ones(n);
+  expected.col(2) = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0).array().square();
+  const Eigen::MatrixXd b = a * expected;
+  Eigen::MatrixXd x;
+  solver->solve_columns(b, x);
+  ASSERT_EQ(x.rows(), n);
+  ASSERT_EQ(x.cols(), 3);
+  for (Eigen::Index c = 0; c < 3; ++c) {
+    EXPECT_LT((x.col(c) - expected.col(c)).norm(), 1e-8 * expected.col(c).norm()) << sparse_solver_name(GetParam());
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, SparseSolverKinds,
                          ::testing::Values(SparseSolverKind::cholmod, SparseSolverKind::cg_incomplete_cholesky,
                                            SparseSolverKind::cg_jacobi));
