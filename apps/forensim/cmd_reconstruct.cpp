@@ -14,13 +14,11 @@
 #include "core/job.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
-#include "craniofacial/face_guides.hpp"
-#include "craniofacial/fit_template.hpp"
 #include "craniofacial/landmark_io.hpp"
-#include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/reconstruction.hpp"
 #include "craniofacial/skull_input.hpp"
-#include "craniofacial/skull_normals.hpp"
 #include "craniofacial/template_head.hpp"
+#include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
@@ -44,19 +42,6 @@ struct ReconstructArgs {
   bool no_interpolated = false;
 };
 
-nlohmann::json vec_json(const Vec3& v) {
-  return nlohmann::json::array({v.x(), v.y(), v.z()});
-}
-
-nlohmann::json violations_json(const SkullSkinViolations& v) {
-  return {{"skull_vertices", v.skull_vertex_count},
-          {"skin_vertices", v.skin_vertex_count},
-          {"skull_outside_skin", v.skull_outside_skin},
-          {"skin_inside_skull", v.skin_inside_skull},
-          {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
-          {"max_skin_intrusion_mm", v.max_skin_intrusion_mm}};
-}
-
 TemplateHeadOptions template_options(const std::string& detail) {
   TemplateHeadOptions o;
   if (detail == "coarse") {
@@ -67,21 +52,6 @@ TemplateHeadOptions template_options(const std::string& detail) {
     o.uv_resolution = 512;
   }
   return o;
-}
-
-// The template's own skull landmarks as a set, named by the vocabulary's bone landmark of each skin landmark
-// (the template writes the upper and lower second-molar points both "ecm2"; the vocabulary keeps ecm2i apart).
-LandmarkSet template_skull_landmarks(const TemplateHead& head) {
-  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
-  LandmarkSet set("template skull");
-  for (const TemplateLandmarkPair& p : head.landmarks) {
-    const LandmarkRef skin = vocabulary.resolve(p.skin_name, "template head", p.skin_name);
-    const auto bone = vocabulary.paired(skin);
-    const std::string name = bone ? vocabulary.name(*bone) : p.bone_name;
-    if (set.contains(name)) continue;
-    set.add({name, p.skull, LandmarkSource::detected, 1.0});
-  }
-  return set;
 }
 
 std::string table_name(const std::string& name) {
@@ -205,48 +175,22 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   const std::string landmark_origin =
       file_landmarks ? "file " + landmark_mode : "the template's skull landmarks (placed by their definitions)";
 
-  // 4. Depth vectors and the fit.
-  const SkullSurface surface(skull.mesh);
-  const DepthVectors vectors = depth_vectors(surface, skull_landmarks_in, depths);
-  LandmarkDepths given;
-  std::vector<std::string> not_on_template;
-  std::vector<bool> used(vectors.vectors.size(), false);
-  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
-    const DepthVector& v = vectors.vectors[i];
-    if (find_template_landmark(head, v.skin_landmark) < 0) {
-      not_on_template.push_back(v.bone_landmark);
-      continue;
-    }
-    used[i] = true;
-    given.names.push_back(v.skin_landmark);
-    given.skull.push_back(v.bone_mm);
-    given.depth_vectors.push_back(v.direction * v.depth_mm);
-  }
-  timings.add("depth vectors", watch.lap());
-  FitTemplateOptions fit_options;
-  fit_options.interpolated_landmarks = job.interpolated_landmarks;
-  const TemplateFit fit(head, skull.mesh, given, fit_options);
-  const TemplateFitResult& result = fit.result();
-  timings.add("fit", watch.lap());
+  // 4. The reconstruction: depth vectors, the fit with interpolated landmarks, the guides, the violations.
+  ReconstructionOptions options;
+  options.fit.interpolated_landmarks = job.interpolated_landmarks;
+  if (job.has_guides) options.guides = job.guides;
+  const Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
+  const ReconstructionResult& result = reconstruction.result();
+  const TemplateFitResult& fit = reconstruction.fit();
+  const DepthVectors& vectors = result.depth_vectors;
   TriMesh final_skin = result.skin;
-  std::vector<TemplateSkinLandmark> skin_only = result.skin_landmarks;
-  std::optional<GuidedHead> guided;
-  SkullSkinViolations final_violations = result.violations;
-  if (job.has_guides) {
-    guided = apply_face_guides(head, result, job.guides);
-    final_skin = guided->skin;
-    skin_only = guided->skin_landmarks;
-    final_violations = count_skull_skin_violations(skull.mesh, final_skin);
-    timings.add("guides", watch.lap());
-  }
+  timings.add("reconstruction", watch.lap());
 
   // 5. Landmark sets, maps, pictures: all in memory.
-  LandmarkSet skull_set("skull"), skin_set("skin");
+  LandmarkSet skull_set("skull");
   for (const DepthVector& v : vectors.vectors) skull_set.add({v.bone_landmark, v.bone_mm, v.source, v.confidence});
-  const LandmarkSet targets = skin_landmarks(vectors);
-  for (const Landmark& l : targets.landmarks()) skin_set.add(l);
-  for (const TemplateSkinLandmark& l : skin_only)
-    if (!skin_set.contains(l.name)) skin_set.add({l.name, l.position, LandmarkSource::detected, 1.0});
+  LandmarkSet skin_set = result.skin_landmarks;
+  skin_set.set_name("skin");
 
   std::shared_ptr<Image> epidermis, normal_map;
   final_skin.material.name = "skin";
@@ -322,43 +266,13 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"notes", depths.notes},
                          {"build", job.build.empty() ? "as the group" : job.build}};
   if (!build_method.empty()) provenance["table"]["build_method"] = build_method;
-  nlohmann::json items = nlohmann::json::array();
-  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
-    const DepthVector& v = vectors.vectors[i];
-    items.push_back({{"name", v.bone_landmark},
-                     {"skin_landmark", v.skin_landmark},
-                     {"source", to_string(v.source)},
-                     {"confidence", v.confidence},
-                     {"skull_mm", vec_json(v.bone_mm)},
-                     {"direction", vec_json(v.direction)},
-                     {"depth_mm", v.depth_mm},
-                     {"depth_source", v.depth_source},
-                     {"skin_mm", vec_json(v.skin_mm)},
-                     {"surface_offset_mm", v.surface_offset_mm},
-                     {"used_in_warp", static_cast<bool>(used[i])}});
-  }
-  provenance["landmarks"] = {{"origin", landmark_origin},
-                             {"items", items},
-                             {"missing_depth", vectors.missing},
-                             {"unpaired", vectors.unpaired},
-                             {"not_on_template", not_on_template},
-                             {"given_pairs", result.given_pair_count},
-                             {"interpolated_pairs", result.targets.size() - result.given_pair_count},
-                             {"max_landmark_residual_mm", result.max_landmark_residual_mm}};
+  const nlohmann::json record = reconstruction.provenance();
+  provenance["landmarks"] = record["landmarks"];
+  provenance["landmarks"]["origin"] = landmark_origin;
   provenance["guides"] = guides_record;
-  if (guided) {
-    nlohmann::json adjusted = nlohmann::json::array();
-    for (std::size_t i = 0; i < guided->adjusted.size(); ++i) {
-      adjusted.push_back({{"name", guided->adjusted[i]},
-                          {"from_mm", vec_json(guided->adjusted_from[i])},
-                          {"to_mm", vec_json(guided->adjusted_to[i])}});
-    }
-    provenance["guides_adjusted"] = adjusted;
-  }
+  if (options.guides) provenance["guides_adjusted"] = record["guides_adjusted"];
   provenance["seed"] = job.seed;
-  nlohmann::json violations = {{"given_pairs_only", violations_json(result.violations_given_only)},
-                               {"with_interpolated_landmarks", violations_json(result.violations)}};
-  if (guided) violations["after_guides"] = violations_json(final_violations);
+  const nlohmann::json violations = reconstruction.violations_json();
 
   // 7. Outputs.
   RunFolder run(out, "reconstruct");
@@ -403,10 +317,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   run.write("provenance.json", provenance.dump(2));
   timings.add("write", watch.lap());
   for (const auto& [stage, seconds] : timings.stages()) run.timings().add(stage, seconds);
-  run.facts()["given_pairs"] = result.given_pair_count;
-  run.facts()["interpolated_pairs"] = result.targets.size() - result.given_pair_count;
+  run.facts()["given_pairs"] = fit.given_pair_count;
+  run.facts()["interpolated_pairs"] = fit.targets.size() - fit.given_pair_count;
   run.facts()["violations_before"] = result.violations_given_only.total();
-  run.facts()["violations_after"] = final_violations.total();
+  run.facts()["violations_after"] = result.violations_final.total();
   run.facts()["seconds_total"] = total.seconds();
   run.write_record();
   return run.facts();
