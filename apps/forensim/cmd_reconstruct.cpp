@@ -132,25 +132,18 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   // 3. Skull and landmarks (files are read before the template is built, so their errors come quickly).
   const bool builtin_skull = job.ct.empty() && job.skull == "builtin";
   const bool phantom_ct = job.ct == "phantom";
+  // Landmarks: a file, the template's own (for skulls in the template's frame: the built-in skull and the CT
+  // phantom, their default), or detected on the skull with the template's skull as the reference (the default
+  // for any other skull).
   std::string landmark_mode = job.landmarks;
-  if (landmark_mode.empty()) {
-    if (!builtin_skull && !phantom_ct) {
-      throw InputError("--landmarks", "",
-                       "a skull other than the built-in one needs its landmarks: give a .mrk.json or CSV file "
-                       "(automatic landmark detection is not available yet)");
-    }
-    landmark_mode = "template";
-  }
-  if (landmark_mode == "auto") {
-    if (!builtin_skull && !phantom_ct) {
-      throw InputError("--landmarks", "auto",
-                       "automatic landmark detection is not available yet; give the skull's landmarks as a "
-                       ".mrk.json or CSV file (only the built-in skull carries its own)");
-    }
-    landmark_mode = "template";
+  if (landmark_mode.empty()) landmark_mode = builtin_skull || phantom_ct ? "template" : "auto";
+  if (landmark_mode == "template" && !builtin_skull && !phantom_ct) {
+    throw InputError("--landmarks", "template",
+                     "only the built-in skull and the CT phantom carry the template's landmarks; give a .mrk.json or "
+                     "CSV file, or 'auto' to detect them");
   }
   std::optional<LandmarkSet> file_landmarks;
-  if (landmark_mode != "template") file_landmarks = read_landmarks(landmark_mode);
+  if (landmark_mode != "template" && landmark_mode != "auto") file_landmarks = read_landmarks(landmark_mode);
   timings.add("inputs", watch.lap());
 
   const TemplateHead head = make_template_head(template_options(job.template_detail));
@@ -171,9 +164,19 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull = load_skull(job.ct.empty() ? job.skull : job.ct, skull_options);
   }
   timings.add("skull", watch.lap());
-  const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks : template_skull_landmarks(head);
+  std::optional<LandmarkDetection> detection;
+  if (landmark_mode == "auto") {
+    detection = detect_template_landmarks(head, skull.mesh);
+    timings.add("landmark detection", watch.lap());
+  }
+  const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks
+                                         : detection    ? detection->landmarks
+                                                        : template_skull_landmarks(head);
   const std::string landmark_origin =
-      file_landmarks ? "file " + landmark_mode : "the template's skull landmarks (placed by their definitions)";
+      file_landmarks ? "file " + landmark_mode
+      : detection    ? "detected: the template's skull landmarks registered onto the skull (similarity, then "
+                       "non-rigid) and refined by their definitions in the skull's head frame"
+                     : "the template's skull landmarks (placed by their definitions)";
 
   // 4. The reconstruction: depth vectors, the fit with interpolated landmarks, the guides, the violations.
   ReconstructionOptions options;
@@ -269,6 +272,24 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   const nlohmann::json record = reconstruction.provenance();
   provenance["landmarks"] = record["landmarks"];
   provenance["landmarks"]["origin"] = landmark_origin;
+  if (detection) {
+    nlohmann::json details = nlohmann::json::array();
+    for (const DetectedLandmark& d : detection->details) {
+      details.push_back({{"name", d.name},
+                         {"rule", to_string(d.rule)},
+                         {"confidence", d.confidence},
+                         {"residual_mm", d.residual_mm},
+                         {"sharpness", d.sharpness},
+                         {"symmetry_error_mm", d.symmetry_error_mm},
+                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()}});
+    }
+    const SkullRegistration& reg = detection->registration;
+    provenance["landmarks"]["detection"] = {{"reference", "template skull"},
+                                            {"similarity_scale", reg.similarity.scale},
+                                            {"similarity_rms_mm", reg.similarity_rms_mm},
+                                            {"non_rigid_rms_mm", reg.rms_mm},
+                                            {"landmarks", details}};
+  }
   provenance["guides"] = guides_record;
   if (options.guides) provenance["guides_adjusted"] = record["guides_adjusted"];
   provenance["seed"] = job.seed;
@@ -343,7 +364,8 @@ const RegisterCommand reconstruct_command{
           ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--bone-iso", j.bone_iso, "CT bone iso-value in stored units (default 1150 = 126 HU)");
       sub->add_option("--landmarks", j.landmarks,
-                      "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto'");
+                      "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto' (detected; "
+                      "the default for other skulls)");
       sub->add_option("--table", j.table, "Tissue-depth table: ttable_2023, rhine_1983 or a CSV file");
       sub->add_option("--sex", j.sex, "Group of the table: female, male or pooled")
           ->check(CLI::IsMember({"female", "male", "pooled"}));

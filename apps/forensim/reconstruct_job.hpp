@@ -9,7 +9,8 @@
 ///   unit, mesh_scale units of a mesh skull (auto, m, cm, mm, in; millimetres per unit)
 ///   bone_iso         CT bone iso-value (stored values; default 1150, i.e. 126 HU stored as HU + 1024)
 ///   landmarks        skull landmarks: a .mrk.json or .csv file, "template" (the template's skull landmarks,
-///                    for skulls in the template's frame) or "auto" (detection; not available yet)
+///                    for the built-in skull and the CT phantom) or "auto" (detected: the template's skull
+///                    registered onto the skull, each landmark refined by its definition, with a confidence)
 ///   table            "ttable_2023" (default), "rhine_1983" or a CSV table file
 ///   sex, population  group of the table ("" = any; pooled values stand in, with a note)
 ///   build            "" (the group's own values), slender, normal or obese (the table's build groups, or
@@ -40,7 +41,7 @@ struct ReconstructJob {
   std::string unit = "auto";
   double mesh_scale = 0.0;
   std::optional<double> bone_iso;
-  std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else required
+  std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else "auto"
   std::string table = "ttable_2023";
   std::string sex, population, build;
   double build_sd = 1.0;

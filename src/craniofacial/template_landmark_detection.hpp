@@ -22,8 +22,15 @@ LandmarkSet template_skull_landmarks(const TemplateHead& head);
 HeadFrame template_head_frame(const TemplateHead& head);
 
 /// Landmarks on `skull` (mm, any pose; outward triangles) by detect_landmarks with the template's skull, its
-/// landmarks and its frame as the reference. Result landmarks have source detected and a confidence in
-/// [0, 1]. Throws InputError for an empty skull and the registration's errors.
+/// landmarks and its frame as the reference. The template's landmarks follow the template's definitions
+/// (template_head.hpp), which place some sites a few mm from where detection's definitions (refine_landmark)
+/// do, so each landmark is placed as follows: a transfer site stays where the registration put it; an
+/// extremal or midline site is refined on the target and moved by the offset from the definition's point to
+/// the template's landmark measured on the template skull (carried through the similarity), unless either
+/// refinement ends at its search limit (no local extremum: the registration alone places it); then it goes onto
+/// the skull's surface (closest point). The template's own skull thus detects its own landmarks. Result
+/// landmarks have source detected and detect_landmarks' confidence in [0, 1]; details[i].refined_mm is the
+/// final position. Throws InputError for an empty skull and the registration's errors.
 LandmarkDetection detect_template_landmarks(const TemplateHead& head, const TriMesh& skull,
                                             const LandmarkDetectionOptions& options = {});
 

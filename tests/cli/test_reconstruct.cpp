@@ -77,17 +77,15 @@ TEST(ReconstructCli, BadLandmarkFilesExitNamingTheFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "d"));
 }
 
-TEST(ReconstructCli, AutomaticLandmarksOnAnotherSkullSayDetectionIsNotAvailable) {
-  const auto dir = test::scratch_dir("reconstruct_cli_auto");
+TEST(ReconstructCli, TemplateLandmarksOnAnotherSkullExitNamingTheOption) {
+  const auto dir = test::scratch_dir("reconstruct_cli_template_landmarks");
   write_text(dir / "tri.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
-  for (const std::string landmarks : {"--landmarks auto ", ""}) {
-    const auto r = run_cli(std::string(kSmall) + "--skull " + (dir / "tri.obj").string() + " " + landmarks + "-o " +
-                           (dir / "run").string());
-    EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
-    EXPECT_NE(r.output.find("--landmarks"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("not available yet"), std::string::npos) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(dir / "run"));
-  }
+  const auto r = run_cli(std::string(kSmall) + "--skull " + (dir / "tri.obj").string() + " --landmarks template -o " +
+                         (dir / "run").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("--landmarks"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'auto'"), std::string::npos) << r.output;  // the way out
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
 }
 
 TEST(ReconstructCli, JobFileWithUnknownKeyOrBadValueExitsWithJobCode) {
