@@ -128,7 +128,7 @@ TEST(SlowReconstructCli, AutomaticLandmarksOnTheBuiltInSkullLandOnItsKnownLandma
   const LandmarkSet known = read_landmarks(builtin / "skull_landmarks.mrk.json");
   const auto dir = test::scratch_dir("reconstruct_slow_auto");
   const auto out = dir / "run";
-  const auto r = run_cli(std::string(kSmall) + "--picture-size 0 --texture-size 0 --landmarks auto -o " + out.string());
+  const auto r = run_cli(std::string(kSmall) + "--picture-size 0 --landmarks auto -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const LandmarkSet detected = read_landmarks(out / "skull_landmarks.mrk.json");
   ASSERT_EQ(detected.size(), known.size());
@@ -155,7 +155,7 @@ TEST(SlowReconstructCli, CtPhantomWithAutomaticLandmarks) {
   const LandmarkSet known = read_landmarks(builtin / "skull_landmarks.mrk.json");
   const auto dir = test::scratch_dir("reconstruct_slow_ct_auto");
   const auto out = dir / "run";
-  const auto r = run_cli(std::string(kSmall) + "--picture-size 0 --texture-size 0 --ct phantom -o " + out.string());
+  const auto r = run_cli(std::string(kSmall) + "--picture-size 0 --ct phantom -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;  // "auto" is the default for a CT
   const LandmarkSet detected = read_landmarks(out / "skull_landmarks.mrk.json");
   ASSERT_EQ(detected.size(), known.size());
@@ -175,8 +175,8 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarks) {
   FORENSIM_REQUIRE_DATA(ct, "ct-head-headsq/quarter.nhdr");
   const auto dir = test::scratch_dir("reconstruct_slow_headsq");
   const auto out = dir / "run";
-  const auto r = run_cli(std::string(kSmall) + "--picture-size 0 --texture-size 0 --ct " + ct.string() +
-                         " --landmarks auto -o " + out.string());
+  const auto r =
+      run_cli(std::string(kSmall) + "--picture-size 0 --ct " + ct.string() + " --landmarks auto -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
   EXPECT_EQ(provenance["skull"]["kind"], "ct");
