@@ -158,6 +158,23 @@ std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skul
                 "non-finite position or depth vector");
   m_given.skull[i] = skull_position;
   m_given.depth_vectors[i] = depth_vector;
+  return retarget();
+}
+
+std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
+                                       const std::vector<Vec3>& depth_vectors) {
+  require_input(skull_positions.size() == m_given.names.size() && depth_vectors.size() == m_given.names.size(),
+                "fit landmarks", "", "positions and depth vectors must come one per landmark of the fit");
+  for (std::size_t i = 0; i < skull_positions.size(); ++i) {
+    require_input(std::isfinite(skull_positions[i].sum()) && std::isfinite(depth_vectors[i].sum()), "fit landmarks",
+                  m_input_names[i], "non-finite position or depth vector");
+  }
+  m_given.skull = skull_positions;
+  m_given.depth_vectors = depth_vectors;
+  return retarget();
+}
+
+std::size_t TemplateFit::retarget() {
   const InterpolatedLandmarks s = target_interpolation();
   if (kept_interpolated_names(s) != m_interpolated_names) {
     // An interpolated point appeared or vanished: a new landmark set, factored anew.

@@ -72,6 +72,10 @@ class TemplateFit {
   /// the new pair set is factored anew. Violations are not recounted (call recount_violations()). Returns the
   /// number of warp targets that changed (all of them after a new factorisation).
   std::size_t move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector);
+  /// All given landmarks at once (the constructor's order and names; e.g. new tissue depths): as
+  /// move_landmark, one re-targeting of the warp. Throws InputError for sizes that differ from the fit's
+  /// landmark count or non-finite values. Returns the number of warp targets that changed.
+  std::size_t set_landmarks(const std::vector<Vec3>& skull_positions, const std::vector<Vec3>& depth_vectors);
   /// Recounts result().violations for the current skin.
   void recount_violations();
 
@@ -83,6 +87,8 @@ class TemplateFit {
   /// Builds the pair set from the given landmarks and `s`, factors the warp and warps every point.
   void factor(const InterpolatedLandmarks& s);
   void apply_positions();
+  /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
+  std::size_t retarget();
 
   const TemplateHead& m_head;
   TriMesh m_skull;

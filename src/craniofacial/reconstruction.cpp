@@ -147,6 +147,36 @@ std::size_t Reconstruction::move_landmark(const std::string& name, const Vec3& p
   return changed;
 }
 
+std::size_t Reconstruction::set_depths(const TissueDepths& depths) {
+  DepthVectors vectors = depth_vectors(m_surface, m_result.skull_landmarks, depths, m_options.depth);
+  const DepthVectors& old = m_result.depth_vectors;
+  bool same_landmarks = vectors.vectors.size() == old.vectors.size();
+  for (std::size_t i = 0; same_landmarks && i < old.vectors.size(); ++i) {
+    same_landmarks = vectors.vectors[i].bone_landmark == old.vectors[i].bone_landmark;
+  }
+  if (!same_landmarks) {
+    for (const DepthVector& v : old.vectors) {
+      require_input(depths.find_site(LandmarkVocabulary::built_in()
+                                         .site(LandmarkVocabulary::built_in().resolve(v.bone_landmark, "tissue depths",
+                                                                                      v.bone_landmark))
+                                         .abbreviation) != nullptr,
+                    "tissue depths '" + depths.table + "'", v.bone_landmark, "has no depth for this landmark");
+    }
+  }
+  m_depths = depths;
+  m_result.depth_vectors = std::move(vectors);
+  std::vector<Vec3> skull, depth;
+  for (std::size_t i = 0; i < m_result.depth_vectors.vectors.size(); ++i) {
+    if (!m_result.used_in_warp[i]) continue;
+    const DepthVector& v = m_result.depth_vectors.vectors[i];
+    skull.push_back(v.bone_mm);
+    depth.push_back(v.direction * v.depth_mm);
+  }
+  const std::size_t changed = m_fit->set_landmarks(skull, depth);
+  apply_guides();
+  return changed;
+}
+
 void Reconstruction::set_guides(const std::optional<FaceGuides>& guides) {
   m_options.guides = guides;
   apply_guides();

@@ -86,6 +86,12 @@ class Reconstruction {
   /// options.depth.max_surface_offset_mm from the skull. Returns the number of warp targets that changed.
   std::size_t move_landmark(const std::string& name, const Vec3& position_mm);
 
+  /// Replaces the tissue depths (e.g. a build variant or a sample of sample_tissue_depths) and re-targets the
+  /// warp with the same factorisation: the depth vectors keep their directions and take the new lengths.
+  /// Throws InputError when a landmark of the warp has no depth in `depths`. Returns the number of warp targets
+  /// that changed. Violations are left stale.
+  std::size_t set_depths(const TissueDepths& depths);
+
   /// Replaces the guides (nullopt: none) and re-runs the second warp only. Throws InputError for bad guides.
   void set_guides(const std::optional<FaceGuides>& guides);
 
