@@ -7,8 +7,11 @@
 // The template head is built once beforehand (it is the same for every reconstruction). CTs: the built-in CT
 // phantom, and the headsq CT of the shared data when the data folder holds it.
 
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +21,7 @@
 #include "core/parallel.hpp"
 #include "core/timer.hpp"
 #include "craniofacial/reconstruction.hpp"
+#include "craniofacial/reconstruction_uncertainty.hpp"
 #include "craniofacial/skull_input.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "phantoms/ct_head_phantom.hpp"
@@ -30,6 +34,32 @@ namespace {
 constexpr double kPaperS = 3600.0;  // "about an hour" per reconstruction
 const char* const kPaperRef = "Kähler et al. 2003, section 6: about an hour";
 
+// CPU seconds of all the process's threads so far: the machine may be shared, and wall times on a loaded
+// machine overstate the work.
+double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// time_repeated, with the mean CPU time per run (all threads) in `cpu_s`.
+BenchTiming timed(int repetitions, const std::function<void()>& fn, double& cpu_s) {
+  const double c0 = process_cpu_s();
+  const BenchTiming t = time_repeated(repetitions, fn);
+  cpu_s = (process_cpu_s() - c0) / std::max(repetitions, 1);
+  return t;
+}
+
+std::string cpu_text(double cpu_s) {
+  char buf[64];
+  if (cpu_s < 1.0) {
+    std::snprintf(buf, sizeof buf, "cpu %.0f ms/run; ", 1e3 * cpu_s);
+  } else {
+    std::snprintf(buf, sizeof buf, "cpu %.2f s/run; ", cpu_s);
+  }
+  return buf;
+}
+
 std::string count_text(const char* what, std::size_t n) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "%zu %s", n, what);
@@ -39,46 +69,54 @@ std::string count_text(const char* what, std::size_t n) {
 /// The CT path's phases for one volume, each timed `repetitions` times (median), then the sum of the medians.
 void bench_ct(const std::string& label, const ScalarGrid& volume, const TemplateHead& head, const TissueDepths& depths,
               const BenchOptions& options, std::vector<BenchRow>& rows) {
+  double c_iso = 0.0, c_mesh = 0.0, c_detect = 0.0, c_fit = 0.0, c_violations = 0.0;
   const double iso = ct_phantom_bone_iso;  // 126 HU stored as HU + 1024, also the headsq CT's storage
   TriMesh surface;
-  const BenchTiming t_iso = time_repeated(options.repetitions, [&] { surface = extract_iso_surface(volume, iso); });
+  const BenchTiming t_iso = timed(
+      options.repetitions, [&] { surface = extract_iso_surface(volume, iso); }, c_iso);
   SkullInputOptions skull_options;
   skull_options.bone_iso_value = iso;
   Skull skull;
-  const BenchTiming t_mesh =
-      time_repeated(options.repetitions, [&] { skull = skull_from_mesh(surface, label, skull_options); });
+  const BenchTiming t_mesh = timed(
+      options.repetitions, [&] { skull = skull_from_mesh(surface, label, skull_options); }, c_mesh);
   std::unique_ptr<LandmarkDetection> detection;
-  const BenchTiming t_detect = time_repeated(options.repetitions, [&] {
-    detection = std::make_unique<LandmarkDetection>(detect_template_landmarks(head, skull.mesh));
-  });
+  const BenchTiming t_detect = timed(
+      options.repetitions,
+      [&] { detection = std::make_unique<LandmarkDetection>(detect_template_landmarks(head, skull.mesh)); }, c_detect);
   std::unique_ptr<Reconstruction> reconstruction;
   ReconstructionOptions fit_only;
   fit_only.fit.count_violations = false;
-  const BenchTiming t_fit = time_repeated(options.repetitions, [&] {
-    reconstruction = std::make_unique<Reconstruction>(head, skull.mesh, detection->landmarks, depths, fit_only);
-  });
-  const BenchTiming t_violations = time_repeated(options.repetitions, [&] { reconstruction->recount_violations(); });
+  const BenchTiming t_fit = timed(
+      options.repetitions,
+      [&] {
+        reconstruction = std::make_unique<Reconstruction>(head, skull.mesh, detection->landmarks, depths, fit_only);
+      },
+      c_fit);
+  const BenchTiming t_violations = timed(
+      options.repetitions, [&] { reconstruction->recount_violations(); }, c_violations);
   const std::string voxels = count_text("voxels", volume.voxel_count());
   rows.push_back({label + ": bone iso-surface", t_iso.median_s, t_iso.min_s, -1.0, "", -1.0,
-                  voxels + " -> " + count_text("triangles", surface.triangles.size())});
+                  cpu_text(c_iso) + voxels + " -> " + count_text("triangles", surface.triangles.size())});
   rows.push_back({label + ": components, decimation", t_mesh.median_s, t_mesh.min_s, -1.0, "", -1.0,
-                  count_text("skull triangles", skull.mesh.triangles.size())});
+                  cpu_text(c_mesh) + count_text("skull triangles", skull.mesh.triangles.size())});
   char reg[160];
-  std::snprintf(reg, sizeof reg, "%zu landmarks; similarity rms %.2f mm, non-rigid rms %.2f mm",
-                detection->landmarks.size(), detection->registration.similarity_rms_mm, detection->registration.rms_mm);
+  std::snprintf(reg, sizeof reg, "%s%zu landmarks; similarity rms %.2f mm, non-rigid rms %.2f mm",
+                cpu_text(c_detect).c_str(), detection->landmarks.size(), detection->registration.similarity_rms_mm,
+                detection->registration.rms_mm);
   rows.push_back(
       {label + ": registration, landmark detection", t_detect.median_s, t_detect.min_s, -1.0, "", -1.0, reg});
   const TemplateFitResult& fit = reconstruction->fit();
   rows.push_back({label + ": fit (depth vectors, warp, muscles)", t_fit.median_s, t_fit.min_s, -1.0, "", -1.0,
-                  count_text("pairs", fit.targets.size()) + " (" + std::to_string(fit.given_pair_count) + " given)"});
+                  cpu_text(c_fit) + count_text("pairs", fit.targets.size()) + " (" +
+                      std::to_string(fit.given_pair_count) + " given)"});
   const ReconstructionResult& result = reconstruction->result();
   rows.push_back({label + ": skull/skin violation counts", t_violations.median_s, t_violations.min_s, -1.0, "", -1.0,
-                  std::to_string(result.violations_given_only.total()) + " -> " +
+                  cpu_text(c_violations) + std::to_string(result.violations_given_only.total()) + " -> " +
                       std::to_string(result.violations_final.total())});
   const double total = t_iso.median_s + t_mesh.median_s + t_detect.median_s + t_fit.median_s + t_violations.median_s;
   const double total_min = t_iso.min_s + t_mesh.min_s + t_detect.min_s + t_fit.min_s + t_violations.min_s;
   rows.push_back({label + ": CT to head, automatic landmarks (sum)", total, total_min, kPaperS, kPaperRef, 5.0,
-                  "the template head built beforehand"});
+                  cpu_text(c_iso + c_mesh + c_detect + c_fit + c_violations) + "the template head built beforehand"});
 }
 
 std::vector<BenchRow> run_reconstruct(const BenchOptions& options) {
@@ -108,11 +146,13 @@ std::vector<BenchRow> run_reconstruct(const BenchOptions& options) {
   std::unique_ptr<Reconstruction> reconstruction;
   ReconstructionOptions fit_only;
   fit_only.fit.count_violations = false;
-  const BenchTiming t_mesh = time_repeated(options.repetitions, [&] {
-    reconstruction = std::make_unique<Reconstruction>(head, head.skull, landmarks, depths, fit_only);
-  });
+  double c_mesh = 0.0;
+  const BenchTiming t_mesh = timed(
+      options.repetitions,
+      [&] { reconstruction = std::make_unique<Reconstruction>(head, head.skull, landmarks, depths, fit_only); },
+      c_mesh);
   rows.push_back({"skull mesh + landmarks to head (built-in skull)", t_mesh.median_s, t_mesh.min_s, kPaperS, kPaperRef,
-                  -1.0, count_text("pairs", reconstruction->fit().targets.size())});
+                  -1.0, cpu_text(c_mesh) + count_text("pairs", reconstruction->fit().targets.size())});
 
   // (c) The interactive case: one landmark moves, the head (skin, muscle grids and shapes) follows. Alternating
   // between two positions so every call changes the head.
@@ -121,20 +161,40 @@ std::vector<BenchRow> run_reconstruct(const BenchOptions& options) {
     int k = 0;
     std::size_t changed = 0;
     reconstruction->move_landmark(name, start + Vec3(0, -2, 1));  // warm-up
-    const BenchTiming t = time_repeated(std::max(options.repetitions, 5), [&] {
-      changed = reconstruction->move_landmark(name, start + (k++ % 2 == 0 ? Vec3(1.5, -3, 2) : Vec3(0, -2, 1)));
-    });
+    double cpu = 0.0;
+    const BenchTiming t = timed(
+        std::max(options.repetitions, 5),
+        [&] {
+          changed = reconstruction->move_landmark(name, start + (k++ % 2 == 0 ? Vec3(1.5, -3, 2) : Vec3(0, -2, 1)));
+        },
+        cpu);
     rows.push_back({std::string("update after one landmark moves (") + name + ")", t.median_s, t.min_s, -1.0, "", 0.2,
-                    count_text("warp targets changed", changed)});
+                    cpu_text(cpu) + count_text("warp targets changed", changed)});
   }
   FaceGuides guides;
   guides.mouth_corner_left_mm = reconstruction->result().skin_landmarks.at("ch'_L").position_mm.x() + 2.0;
   reconstruction->set_guides(guides);
-  const BenchTiming t_guided = time_repeated(std::max(options.repetitions, 5), [&] {
-    reconstruction->move_landmark("gn", landmarks.at("gn").position_mm + Vec3(0, -1, 0));
-  });
+  double c_guided = 0.0;
+  int k = 0;
+  const BenchTiming t_guided = timed(
+      std::max(options.repetitions, 5),
+      [&] {
+        reconstruction->move_landmark("gn", landmarks.at("gn").position_mm + Vec3(0, k++ % 2 == 0 ? -1.0 : -2.0, 0));
+      },
+      c_guided);
   rows.push_back({"update after one landmark moves, with guides (gn)", t_guided.median_s, t_guided.min_s, -1.0, "", 0.2,
-                  "second warp re-applied; " + std::to_string(thread_count()) + " threads"});
+                  cpu_text(c_guided) + "second warp re-applied; " + std::to_string(thread_count()) + " threads"});
+  reconstruction->set_guides(std::nullopt);
+
+  // Beyond the paper: the uncertainty ensemble (depths drawn from the table's SDs), 16 members.
+  double c_ensemble = 0.0;
+  ReconstructionUncertainty spread;
+  const BenchTiming t_ensemble = timed(
+      options.repetitions, [&] { spread = reconstruction_uncertainty(*reconstruction, 16, 1); }, c_ensemble);
+  char ens[96];
+  std::snprintf(ens, sizeof ens, "max spread %.2f mm, mean %.2f mm", spread.max_spread_mm, spread.mean_spread_mm);
+  rows.push_back({"uncertainty ensemble, 16 members", t_ensemble.median_s, t_ensemble.min_s, -1.0, "", -1.0,
+                  cpu_text(c_ensemble) + ens});
   return rows;
 }
 

@@ -16,6 +16,7 @@
 #include "core/timer.hpp"
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/reconstruction.hpp"
+#include "craniofacial/reconstruction_uncertainty.hpp"
 #include "craniofacial/skull_input.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -28,6 +29,7 @@
 #include "phantoms/skin_maps.hpp"
 #include "pictures.hpp"
 #include "reconstruct_job.hpp"
+#include "render/colour_bar.hpp"
 #include "render/renderer.hpp"
 #include "render/sheet.hpp"
 
@@ -89,6 +91,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--texture-size")) job.texture_size = cli_job.texture_size;
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
   if (typed("--samples")) job.samples = cli_job.samples;
+  if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
   if (a.no_interpolated) job.interpolated_landmarks = false;
   nlohmann::json guides_record = nullptr;
   if (!a.guides_file.empty()) {
@@ -182,12 +185,20 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   ReconstructionOptions options;
   options.fit.interpolated_landmarks = job.interpolated_landmarks;
   if (job.has_guides) options.guides = job.guides;
-  const Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
+  Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
   const ReconstructionResult& result = reconstruction.result();
   const TemplateFitResult& fit = reconstruction.fit();
   const DepthVectors& vectors = result.depth_vectors;
   TriMesh final_skin = result.skin;
   timings.add("reconstruction", watch.lap());
+
+  std::optional<ReconstructionUncertainty> uncertainty;
+  if (job.uncertainty_samples > 0) {
+    uncertainty =
+        reconstruction_uncertainty(reconstruction, job.uncertainty_samples, job.uncertainty_seed.value_or(job.seed));
+    final_skin.vertex_fields.scalars["uncertainty_mm"] = uncertainty->vertex_spread_mm;
+    timings.add("uncertainty", watch.lap());
+  }
 
   // 5. Landmark sets, maps, pictures: all in memory.
   LandmarkSet skull_set("skull");
@@ -244,6 +255,21 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     Image textured = render_view(face, settings, "three_quarter", axes);
     pictures.emplace_back("render_textured.png", encode_png(textured));
     cells.push_back({std::move(textured), "reconstructed head"});
+    if (uncertainty) {
+      // The spread over the reconstructed face, with its scale.
+      Scene spread;
+      spread.environment.up = axes.up;
+      const double top = std::max(uncertainty->max_spread_mm, 1e-3);
+      spread.add(skin_ptr, SurfaceMaterial::field("uncertainty_mm", 0.0, top, ColormapName::inferno), "spread");
+      ColourBar bar;
+      bar.colormap = Colormap{ColormapName::inferno};
+      bar.max = top;
+      bar.title = "spread";
+      bar.unit = "mm";
+      Image map = with_colour_bar(render_view(spread, settings, "three_quarter", axes), bar);
+      pictures.emplace_back("render_uncertainty.png", encode_png(map));
+      cells.push_back({std::move(map), "uncertainty (" + std::to_string(uncertainty->samples) + " samples)"});
+    }
     pictures.emplace_back("reconstruction.png", encode_png(make_sheet(cells, 4, "forensim reconstruct")));
     timings.add("renders", watch.lap());
   }
@@ -333,6 +359,18 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   run.add_output("skull_landmarks.mrk.json");
   write_landmarks(run.file("skin_landmarks.mrk.json"), skin_set);
   run.add_output("skin_landmarks.mrk.json");
+  if (uncertainty) {
+    nlohmann::json u = {{"samples", uncertainty->samples},
+                        {"seed", uncertainty->seed},
+                        {"method",
+                         "depths drawn from the table's means and SDs; spread = RMS distance of the members' "
+                         "vertex positions from their mean, per head.obj vertex"},
+                        {"max_spread_mm", uncertainty->max_spread_mm},
+                        {"mean_spread_mm", uncertainty->mean_spread_mm},
+                        {"vertex_spread_mm", uncertainty->vertex_spread_mm}};
+    run.write("uncertainty.json", u.dump());
+    provenance["uncertainty"] = {{"samples", uncertainty->samples}, {"seed", uncertainty->seed}};
+  }
   for (const auto& [file, bytes] : pictures) run.write(file, bytes);
   run.write("violations.json", violations.dump(2));
   run.write("provenance.json", provenance.dump(2));
@@ -386,6 +424,9 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--picture-size", j.picture_size, "Pixels per rendered view (0 = no renders)")
           ->check(CLI::Range(0, 4096));
       sub->add_option("--samples", j.samples, "Samples per pixel of the renders")->check(CLI::Range(1, 256));
+      sub->add_option("--uncertainty", j.uncertainty_samples,
+                      "Members of the uncertainty ensemble (depths drawn from the table's SDs; 0 = none)")
+          ->check(CLI::Range(0, 1000));
       return [a, sub]() { return run_reconstruct(*a, *sub); };
     }};
 

@@ -23,6 +23,9 @@
 ///   seed             seed of the procedural skin maps
 ///   texture_size     skin map resolution (0 = no maps)
 ///   picture_size, samples  renders (picture_size 0 = no renders)
+///   uncertainty      {"samples": N, "seed": S}: an ensemble of N reconstructions (2..1000) with depths drawn from
+///                    the table's SDs (seed S, default the job's seed); writes the per-vertex spread
+///                    (uncertainty.json, render_uncertainty.png)
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
@@ -54,6 +57,8 @@ struct ReconstructJob {
   int texture_size = 1024;
   int picture_size = 512;
   int samples = 4;
+  int uncertainty_samples = 0;  ///< 0: no ensemble
+  std::optional<std::uint64_t> uncertainty_seed;
 };
 
 /// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError

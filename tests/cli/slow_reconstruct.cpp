@@ -185,3 +185,41 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarks) {
   std::cout << "headsq CT, automatic landmarks: similarity scale " << detection["similarity_scale"] << ", rms "
             << detection["similarity_rms_mm"] << " mm, non-rigid rms " << detection["non_rigid_rms_mm"] << " mm\n";
 }
+
+TEST(SlowReconstructCli, UncertaintyEnsembleWritesTheSpreadPerVertex) {
+  const auto dir = test::scratch_dir("reconstruct_slow_uncertainty");
+  {
+    std::ofstream job(dir / "job.json");
+    job << R"({"version": 1, "uncertainty": {"samples": 4, "seed": 3}})";
+  }
+  nlohmann::json spread[2];
+  for (int k = 0; k < 2; ++k) {
+    const auto out = dir / ("run" + std::to_string(k));
+    // The second run on one thread: the ensemble does not depend on the thread count.
+    const std::string threads = k == 1 ? "--threads 1 " : "";
+    const auto r = run_cli(threads + std::string(kSmall) + "--picture-size 96 --job " + (dir / "job.json").string() +
+                           " -o " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out / "render_uncertainty.png"));
+    spread[k] = nlohmann::json::parse(read_file(out / "uncertainty.json"));
+    const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
+    EXPECT_EQ(provenance["uncertainty"]["samples"], 4);
+    EXPECT_EQ(provenance["uncertainty"]["seed"], 3);
+  }
+  // One value per head.obj vertex, none negative, the largest recorded.
+  const std::string obj = read_file(dir / "run0" / "head.obj");
+  std::size_t vertices = 0;
+  for (std::size_t at = obj.find("\nv "); at != std::string::npos; at = obj.find("\nv ", at + 1)) ++vertices;
+  const auto& values = spread[0]["vertex_spread_mm"];
+  ASSERT_EQ(values.size(), vertices);
+  double largest = 0.0;
+  for (const auto& v : values) {
+    EXPECT_GE(v.get<double>(), 0.0);
+    largest = std::max(largest, v.get<double>());
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_DOUBLE_EQ(spread[0]["max_spread_mm"].get<double>(), largest);
+  EXPECT_EQ(spread[0]["vertex_spread_mm"], spread[1]["vertex_spread_mm"]);
+  std::cout << "uncertainty (4 samples): max spread " << largest << " mm, mean "
+            << spread[0]["mean_spread_mm"].get<double>() << " mm\n";
+}

@@ -107,6 +107,17 @@ TEST(ReconstructCli, JobFileWithUnknownKeyOrBadValueExitsWithJobCode) {
   EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
   EXPECT_NE(r.output.find("athletic"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  // An ensemble of one member, and a misspelt key inside the uncertainty object.
+  write_text(dir / "one.json", R"({"uncertainty": {"samples": 1}})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "one.json").string() + " -o " + (dir / "e").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  EXPECT_NE(r.output.find("samples"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e"));
+  write_text(dir / "seeds.json", R"({"uncertainty": {"samples": 4, "seeds": 2}})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "seeds.json").string() + " -o " + (dir / "f").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  EXPECT_NE(r.output.find("seeds"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f"));
   // A guides file with a vector of two numbers.
   write_text(dir / "g.json", R"({"nasal_spine_tip": [1, 2]})");
   r = run_cli(std::string(kSmall) + "--guides " + (dir / "g.json").string() + " -o " + (dir / "d").string());
