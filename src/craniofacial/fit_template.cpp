@@ -158,7 +158,22 @@ std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skul
                 "non-finite position or depth vector");
   m_given.skull[i] = skull_position;
   m_given.depth_vectors[i] = depth_vector;
-  return retarget();
+  return retarget(feeds_interpolation(m_given.names[i]));
+}
+
+bool TemplateFit::feeds_interpolation(const std::string& bone_name) const {
+  if (m_interpolated_names.empty() && m_template_interpolated_names.empty()) return false;
+  // What interpolate_landmarks reads: the cranium frame and breadth, and the mandible arcs' ends.
+  const LandmarkInterpolationOptions& o = m_options.interpolation;
+  if (o.cranium) {
+    for (const char* name : {"g", "v", "op", "zy_L", "zy_R"})
+      if (bone_name == name) return true;
+  }
+  if (o.mandible) {
+    for (const LandmarkArc& arc : o.mandible_arcs)
+      if (bone_name == arc.from || bone_name == arc.to) return true;
+  }
+  return false;
 }
 
 std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
@@ -171,10 +186,11 @@ std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
   }
   m_given.skull = skull_positions;
   m_given.depth_vectors = depth_vectors;
-  return retarget();
+  return retarget(true);
 }
 
-std::size_t TemplateFit::retarget() {
+std::size_t TemplateFit::retarget(bool reinterpolate) {
+  if (!reinterpolate) return retarget_with(m_result.interpolated);
   const InterpolatedLandmarks s = target_interpolation();
   if (kept_interpolated_names(s) != m_interpolated_names) {
     // An interpolated point appeared or vanished: a new landmark set, factored anew.
@@ -184,6 +200,10 @@ std::size_t TemplateFit::retarget() {
     m_options.count_violations = count;
     return m_result.targets.size();
   }
+  return retarget_with(s);
+}
+
+std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
   std::vector<Vec3> targets(m_result.targets.size());
   const std::size_t given = m_result.given_pair_count;
   for (std::size_t j = 0; j < given; ++j) targets[j] = m_given.skull[j] + m_given.depth_vectors[j];

@@ -88,7 +88,12 @@ class TemplateFit {
   void factor(const InterpolatedLandmarks& s);
   void apply_positions();
   /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
-  std::size_t retarget();
+  /// Without `reinterpolate` the interpolated points are kept (the moved landmark does not feed them).
+  std::size_t retarget(bool reinterpolate);
+  /// Targets from the given landmarks and the interpolated points `s` (holding every kept name).
+  std::size_t retarget_with(const InterpolatedLandmarks& s);
+  /// True when interpolate_landmarks reads the bone landmark `bone_name` (cranium frame, arc ends).
+  bool feeds_interpolation(const std::string& bone_name) const;
 
   const TemplateHead& m_head;
   TriMesh m_skull;
