@@ -32,6 +32,7 @@
 #include "render/colour_bar.hpp"
 #include "render/renderer.hpp"
 #include "render/sheet.hpp"
+#include "tet_io/vtu_writer.hpp"
 
 namespace forensim::cli {
 namespace {
@@ -196,7 +197,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (job.uncertainty_samples > 0) {
     uncertainty =
         reconstruction_uncertainty(reconstruction, job.uncertainty_samples, job.uncertainty_seed.value_or(job.seed));
-    final_skin.vertex_fields.scalars["uncertainty_mm"] = uncertainty->vertex_spread_mm;
+    final_skin.vertex_fields.scalars["uncertainty"] = uncertainty->vertex_spread_mm;
     timings.add("uncertainty", watch.lap());
   }
 
@@ -260,7 +261,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       Scene spread;
       spread.environment.up = axes.up;
       const double top = std::max(uncertainty->max_spread_mm, 1e-3);
-      spread.add(skin_ptr, SurfaceMaterial::field("uncertainty_mm", 0.0, top, ColormapName::inferno), "spread");
+      spread.add(skin_ptr, SurfaceMaterial::field("uncertainty", 0.0, top, ColormapName::inferno), "spread");
       ColourBar bar;
       bar.colormap = Colormap{ColormapName::inferno};
       bar.max = top;
@@ -369,6 +370,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                         {"mean_spread_mm", uncertainty->mean_spread_mm},
                         {"vertex_spread_mm", uncertainty->vertex_spread_mm}};
     run.write("uncertainty.json", u.dump());
+    // The head with its "uncertainty" vertex field (mm), for ParaView and forensim serve's viewer.
+    write_vtu(run.file("head_uncertainty.vtu"), final_skin);
+    run.add_output("head_uncertainty.vtu");
     provenance["uncertainty"] = {{"samples", uncertainty->samples}, {"seed", uncertainty->seed}};
   }
   for (const auto& [file, bytes] : pictures) run.write(file, bytes);

@@ -25,7 +25,8 @@
 ///   picture_size, samples  renders (picture_size 0 = no renders)
 ///   uncertainty      {"samples": N, "seed": S}: an ensemble of N reconstructions (2..1000) with depths drawn from
 ///                    the table's SDs (seed S, default the job's seed); writes the per-vertex spread
-///                    (uncertainty.json, render_uncertainty.png)
+///                    (uncertainty.json, head_uncertainty.vtu with the vertex field "uncertainty" in mm,
+///                    render_uncertainty.png)
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>

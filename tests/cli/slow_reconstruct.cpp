@@ -201,6 +201,7 @@ TEST(SlowReconstructCli, UncertaintyEnsembleWritesTheSpreadPerVertex) {
                            " -o " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(std::filesystem::exists(out / "render_uncertainty.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / "head_uncertainty.vtu"));
     spread[k] = nlohmann::json::parse(read_file(out / "uncertainty.json"));
     const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
     EXPECT_EQ(provenance["uncertainty"]["samples"], 4);
