@@ -161,19 +161,20 @@ std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skul
   return retarget(feeds_interpolation(m_given.names[i]));
 }
 
-bool TemplateFit::feeds_interpolation(const std::string& bone_name) const {
-  if (m_interpolated_names.empty() && m_template_interpolated_names.empty()) return false;
+int TemplateFit::feeds_interpolation(const std::string& bone_name) const {
+  if (m_template_interpolated_names.empty()) return 0;
   // What interpolate_landmarks reads: the cranium frame and breadth, and the mandible arcs' ends.
   const LandmarkInterpolationOptions& o = m_options.interpolation;
+  int feeds = 0;
   if (o.cranium) {
     for (const char* name : {"g", "v", "op", "zy_L", "zy_R"})
-      if (bone_name == name) return true;
+      if (bone_name == name) feeds |= k_cranium;
   }
   if (o.mandible) {
     for (const LandmarkArc& arc : o.mandible_arcs)
-      if (bone_name == arc.from || bone_name == arc.to) return true;
+      if (bone_name == arc.from || bone_name == arc.to) feeds |= k_mandible;
   }
-  return false;
+  return feeds;
 }
 
 std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
@@ -186,14 +187,37 @@ std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
   }
   m_given.skull = skull_positions;
   m_given.depth_vectors = depth_vectors;
-  return retarget(true);
+  return retarget(k_cranium | k_mandible);
 }
 
-std::size_t TemplateFit::retarget(bool reinterpolate) {
-  if (!reinterpolate) return retarget_with(m_result.interpolated);
-  const InterpolatedLandmarks s = target_interpolation();
+std::size_t TemplateFit::retarget(int regenerate) {
+  if (regenerate == 0) return retarget_with(m_result.interpolated);
+  InterpolatedLandmarks s;
+  if (regenerate == (k_cranium | k_mandible)) {
+    s = target_interpolation();
+  } else {
+    // One generator again (the cranium cap's points are named "cranium_..."), the other's points kept.
+    LandmarkInterpolationOptions one = m_options.interpolation;
+    one.cranium = one.cranium && (regenerate & k_cranium) != 0;
+    one.mandible = one.mandible && (regenerate & k_mandible) != 0;
+    const InterpolatedLandmarks fresh = interpolate_landmarks(m_skull, *m_skull_rays, m_given, one);
+    const InterpolatedLandmarks& old = m_result.interpolated;
+    for (std::size_t i = 0; i < old.names.size(); ++i) {
+      const bool cranial = old.names[i].rfind("cranium_", 0) == 0;
+      if (cranial == ((regenerate & k_cranium) != 0)) continue;
+      s.names.push_back(old.names[i]);
+      s.skull.push_back(old.skull[i]);
+      s.normals.push_back(old.normals[i]);
+      s.depth_mm.push_back(old.depth_mm[i]);
+    }
+    s.names.insert(s.names.end(), fresh.names.begin(), fresh.names.end());
+    s.skull.insert(s.skull.end(), fresh.skull.begin(), fresh.skull.end());
+    s.normals.insert(s.normals.end(), fresh.normals.begin(), fresh.normals.end());
+    s.depth_mm.insert(s.depth_mm.end(), fresh.depth_mm.begin(), fresh.depth_mm.end());
+  }
   if (kept_interpolated_names(s) != m_interpolated_names) {
-    // An interpolated point appeared or vanished: a new landmark set, factored anew.
+    // An interpolated point appeared or vanished: a new landmark set, factored anew from the whole set.
+    if (regenerate != (k_cranium | k_mandible)) s = target_interpolation();
     const bool count = m_options.count_violations;
     m_options.count_violations = false;
     factor(s);

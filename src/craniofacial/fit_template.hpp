@@ -88,12 +88,15 @@ class TemplateFit {
   void factor(const InterpolatedLandmarks& s);
   void apply_positions();
   /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
-  /// Without `reinterpolate` the interpolated points are kept (the moved landmark does not feed them).
-  std::size_t retarget(bool reinterpolate);
+  /// `regenerate` (k_cranium, k_mandible or both): the interpolated generators run again on the target; the
+  /// others' points are kept (the moved landmarks do not feed them).
+  std::size_t retarget(int regenerate);
   /// Targets from the given landmarks and the interpolated points `s` (holding every kept name).
   std::size_t retarget_with(const InterpolatedLandmarks& s);
-  /// True when interpolate_landmarks reads the bone landmark `bone_name` (cranium frame, arc ends).
-  bool feeds_interpolation(const std::string& bone_name) const;
+  /// The generators of interpolate_landmarks that read the bone landmark `bone_name`: k_cranium (frame and
+  /// breadth), k_mandible (an arc's end), both or 0.
+  int feeds_interpolation(const std::string& bone_name) const;
+  static constexpr int k_cranium = 1, k_mandible = 2;
 
   const TemplateHead& m_head;
   TriMesh m_skull;

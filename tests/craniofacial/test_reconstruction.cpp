@@ -82,9 +82,9 @@ TEST(Reconstruction, DepthVectorsHaveTheTablesLengthsAndTheLandmarksSources) {
 TEST(Reconstruction, MovingOneLandmarkEqualsAFreshReconstruction) {
   const TemplateHead& head = coarse_template_head();
   const LandmarkSet landmarks = template_skull_landmarks(head);
-  // A mandible landmark (one warp target changes, few interpolated ones) and one of the cranium frame (the
-  // interpolated cap moves with it).
-  for (const std::string name : {"pg", "v"}) {
+  // A chin landmark no interpolated point depends on (one warp target changes), one of the cranium frame (the
+  // interpolated cap moves with it) and a mandible arc's end (the arcs' points move with it).
+  for (const std::string name : {"pg", "v", "go_L"}) {
     Reconstruction r(head, head.skull, landmarks, table_depths(), quick_options());
     const Vec3 moved = landmarks.at(name).position_mm + Vec3(1.5, -3.0, 2.0);
     const std::size_t changed = r.move_landmark(name, moved);
