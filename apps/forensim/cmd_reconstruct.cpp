@@ -14,13 +14,12 @@
 #include "core/job.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
-#include "craniofacial/face_guides.hpp"
-#include "craniofacial/fit_template.hpp"
 #include "craniofacial/landmark_io.hpp"
-#include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/reconstruction.hpp"
+#include "craniofacial/reconstruction_uncertainty.hpp"
 #include "craniofacial/skull_input.hpp"
-#include "craniofacial/skull_normals.hpp"
 #include "craniofacial/template_head.hpp"
+#include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
@@ -30,8 +29,10 @@
 #include "phantoms/skin_maps.hpp"
 #include "pictures.hpp"
 #include "reconstruct_job.hpp"
+#include "render/colour_bar.hpp"
 #include "render/renderer.hpp"
 #include "render/sheet.hpp"
+#include "tet_io/vtu_writer.hpp"
 
 namespace forensim::cli {
 namespace {
@@ -44,19 +45,6 @@ struct ReconstructArgs {
   bool no_interpolated = false;
 };
 
-nlohmann::json vec_json(const Vec3& v) {
-  return nlohmann::json::array({v.x(), v.y(), v.z()});
-}
-
-nlohmann::json violations_json(const SkullSkinViolations& v) {
-  return {{"skull_vertices", v.skull_vertex_count},
-          {"skin_vertices", v.skin_vertex_count},
-          {"skull_outside_skin", v.skull_outside_skin},
-          {"skin_inside_skull", v.skin_inside_skull},
-          {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
-          {"max_skin_intrusion_mm", v.max_skin_intrusion_mm}};
-}
-
 TemplateHeadOptions template_options(const std::string& detail) {
   TemplateHeadOptions o;
   if (detail == "coarse") {
@@ -67,21 +55,6 @@ TemplateHeadOptions template_options(const std::string& detail) {
     o.uv_resolution = 512;
   }
   return o;
-}
-
-// The template's own skull landmarks as a set, named by the vocabulary's bone landmark of each skin landmark
-// (the template writes the upper and lower second-molar points both "ecm2"; the vocabulary keeps ecm2i apart).
-LandmarkSet template_skull_landmarks(const TemplateHead& head) {
-  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
-  LandmarkSet set("template skull");
-  for (const TemplateLandmarkPair& p : head.landmarks) {
-    const LandmarkRef skin = vocabulary.resolve(p.skin_name, "template head", p.skin_name);
-    const auto bone = vocabulary.paired(skin);
-    const std::string name = bone ? vocabulary.name(*bone) : p.bone_name;
-    if (set.contains(name)) continue;
-    set.add({name, p.skull, LandmarkSource::detected, 1.0});
-  }
-  return set;
 }
 
 std::string table_name(const std::string& name) {
@@ -119,6 +92,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--texture-size")) job.texture_size = cli_job.texture_size;
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
   if (typed("--samples")) job.samples = cli_job.samples;
+  if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
   if (a.no_interpolated) job.interpolated_landmarks = false;
   nlohmann::json guides_record = nullptr;
   if (!a.guides_file.empty()) {
@@ -162,25 +136,18 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   // 3. Skull and landmarks (files are read before the template is built, so their errors come quickly).
   const bool builtin_skull = job.ct.empty() && job.skull == "builtin";
   const bool phantom_ct = job.ct == "phantom";
+  // Landmarks: a file, the template's own (for skulls in the template's frame: the built-in skull and the CT
+  // phantom, their default), or detected on the skull with the template's skull as the reference (the default
+  // for any other skull).
   std::string landmark_mode = job.landmarks;
-  if (landmark_mode.empty()) {
-    if (!builtin_skull && !phantom_ct) {
-      throw InputError("--landmarks", "",
-                       "a skull other than the built-in one needs its landmarks: give a .mrk.json or CSV file "
-                       "(automatic landmark detection is not available yet)");
-    }
-    landmark_mode = "template";
-  }
-  if (landmark_mode == "auto") {
-    if (!builtin_skull && !phantom_ct) {
-      throw InputError("--landmarks", "auto",
-                       "automatic landmark detection is not available yet; give the skull's landmarks as a "
-                       ".mrk.json or CSV file (only the built-in skull carries its own)");
-    }
-    landmark_mode = "template";
+  if (landmark_mode.empty()) landmark_mode = builtin_skull || phantom_ct ? "template" : "auto";
+  if (landmark_mode == "template" && !builtin_skull && !phantom_ct) {
+    throw InputError("--landmarks", "template",
+                     "only the built-in skull and the CT phantom carry the template's landmarks; give a .mrk.json or "
+                     "CSV file, or 'auto' to detect them");
   }
   std::optional<LandmarkSet> file_landmarks;
-  if (landmark_mode != "template") file_landmarks = read_landmarks(landmark_mode);
+  if (landmark_mode != "template" && landmark_mode != "auto") file_landmarks = read_landmarks(landmark_mode);
   timings.add("inputs", watch.lap());
 
   const TemplateHead head = make_template_head(template_options(job.template_detail));
@@ -201,52 +168,44 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull = load_skull(job.ct.empty() ? job.skull : job.ct, skull_options);
   }
   timings.add("skull", watch.lap());
-  const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks : template_skull_landmarks(head);
-  const std::string landmark_origin =
-      file_landmarks ? "file " + landmark_mode : "the template's skull landmarks (placed by their definitions)";
-
-  // 4. Depth vectors and the fit.
-  const SkullSurface surface(skull.mesh);
-  const DepthVectors vectors = depth_vectors(surface, skull_landmarks_in, depths);
-  LandmarkDepths given;
-  std::vector<std::string> not_on_template;
-  std::vector<bool> used(vectors.vectors.size(), false);
-  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
-    const DepthVector& v = vectors.vectors[i];
-    if (find_template_landmark(head, v.skin_landmark) < 0) {
-      not_on_template.push_back(v.bone_landmark);
-      continue;
-    }
-    used[i] = true;
-    given.names.push_back(v.skin_landmark);
-    given.skull.push_back(v.bone_mm);
-    given.depth_vectors.push_back(v.direction * v.depth_mm);
+  std::optional<LandmarkDetection> detection;
+  if (landmark_mode == "auto") {
+    detection = detect_template_landmarks(head, skull.mesh);
+    timings.add("landmark detection", watch.lap());
   }
-  timings.add("depth vectors", watch.lap());
-  FitTemplateOptions fit_options;
-  fit_options.interpolated_landmarks = job.interpolated_landmarks;
-  const TemplateFit fit(head, skull.mesh, given, fit_options);
-  const TemplateFitResult& result = fit.result();
-  timings.add("fit", watch.lap());
+  const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks
+                                         : detection    ? detection->landmarks
+                                                        : template_skull_landmarks(head);
+  const std::string landmark_origin =
+      file_landmarks ? "file " + landmark_mode
+      : detection    ? "detected: the template's skull landmarks registered onto the skull (similarity, then "
+                       "non-rigid) and refined by their definitions in the skull's head frame"
+                     : "the template's skull landmarks (placed by their definitions)";
+
+  // 4. The reconstruction: depth vectors, the fit with interpolated landmarks, the guides, the violations.
+  ReconstructionOptions options;
+  options.fit.interpolated_landmarks = job.interpolated_landmarks;
+  if (job.has_guides) options.guides = job.guides;
+  Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
+  const ReconstructionResult& result = reconstruction.result();
+  const TemplateFitResult& fit = reconstruction.fit();
+  const DepthVectors& vectors = result.depth_vectors;
   TriMesh final_skin = result.skin;
-  std::vector<TemplateSkinLandmark> skin_only = result.skin_landmarks;
-  std::optional<GuidedHead> guided;
-  SkullSkinViolations final_violations = result.violations;
-  if (job.has_guides) {
-    guided = apply_face_guides(head, result, job.guides);
-    final_skin = guided->skin;
-    skin_only = guided->skin_landmarks;
-    final_violations = count_skull_skin_violations(skull.mesh, final_skin);
-    timings.add("guides", watch.lap());
+  timings.add("reconstruction", watch.lap());
+
+  std::optional<ReconstructionUncertainty> uncertainty;
+  if (job.uncertainty_samples > 0) {
+    uncertainty =
+        reconstruction_uncertainty(reconstruction, job.uncertainty_samples, job.uncertainty_seed.value_or(job.seed));
+    final_skin.vertex_fields.scalars["uncertainty"] = uncertainty->vertex_spread_mm;
+    timings.add("uncertainty", watch.lap());
   }
 
   // 5. Landmark sets, maps, pictures: all in memory.
-  LandmarkSet skull_set("skull"), skin_set("skin");
+  LandmarkSet skull_set("skull");
   for (const DepthVector& v : vectors.vectors) skull_set.add({v.bone_landmark, v.bone_mm, v.source, v.confidence});
-  const LandmarkSet targets = skin_landmarks(vectors);
-  for (const Landmark& l : targets.landmarks()) skin_set.add(l);
-  for (const TemplateSkinLandmark& l : skin_only)
-    if (!skin_set.contains(l.name)) skin_set.add({l.name, l.position, LandmarkSource::detected, 1.0});
+  LandmarkSet skin_set = result.skin_landmarks;
+  skin_set.set_name("skin");
 
   std::shared_ptr<Image> epidermis, normal_map;
   final_skin.material.name = "skin";
@@ -297,6 +256,21 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     Image textured = render_view(face, settings, "three_quarter", axes);
     pictures.emplace_back("render_textured.png", encode_png(textured));
     cells.push_back({std::move(textured), "reconstructed head"});
+    if (uncertainty) {
+      // The spread over the reconstructed face, with its scale.
+      Scene spread;
+      spread.environment.up = axes.up;
+      const double top = std::max(uncertainty->max_spread_mm, 1e-3);
+      spread.add(skin_ptr, SurfaceMaterial::field("uncertainty", 0.0, top, ColormapName::inferno), "spread");
+      ColourBar bar;
+      bar.colormap = Colormap{ColormapName::inferno};
+      bar.max = top;
+      bar.title = "spread";
+      bar.unit = "mm";
+      Image map = with_colour_bar(render_view(spread, settings, "three_quarter", axes), bar);
+      pictures.emplace_back("render_uncertainty.png", encode_png(map));
+      cells.push_back({std::move(map), "uncertainty (" + std::to_string(uncertainty->samples) + " samples)"});
+    }
     pictures.emplace_back("reconstruction.png", encode_png(make_sheet(cells, 4, "forensim reconstruct")));
     timings.add("renders", watch.lap());
   }
@@ -322,43 +296,31 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"notes", depths.notes},
                          {"build", job.build.empty() ? "as the group" : job.build}};
   if (!build_method.empty()) provenance["table"]["build_method"] = build_method;
-  nlohmann::json items = nlohmann::json::array();
-  for (std::size_t i = 0; i < vectors.vectors.size(); ++i) {
-    const DepthVector& v = vectors.vectors[i];
-    items.push_back({{"name", v.bone_landmark},
-                     {"skin_landmark", v.skin_landmark},
-                     {"source", to_string(v.source)},
-                     {"confidence", v.confidence},
-                     {"skull_mm", vec_json(v.bone_mm)},
-                     {"direction", vec_json(v.direction)},
-                     {"depth_mm", v.depth_mm},
-                     {"depth_source", v.depth_source},
-                     {"skin_mm", vec_json(v.skin_mm)},
-                     {"surface_offset_mm", v.surface_offset_mm},
-                     {"used_in_warp", static_cast<bool>(used[i])}});
-  }
-  provenance["landmarks"] = {{"origin", landmark_origin},
-                             {"items", items},
-                             {"missing_depth", vectors.missing},
-                             {"unpaired", vectors.unpaired},
-                             {"not_on_template", not_on_template},
-                             {"given_pairs", result.given_pair_count},
-                             {"interpolated_pairs", result.targets.size() - result.given_pair_count},
-                             {"max_landmark_residual_mm", result.max_landmark_residual_mm}};
-  provenance["guides"] = guides_record;
-  if (guided) {
-    nlohmann::json adjusted = nlohmann::json::array();
-    for (std::size_t i = 0; i < guided->adjusted.size(); ++i) {
-      adjusted.push_back({{"name", guided->adjusted[i]},
-                          {"from_mm", vec_json(guided->adjusted_from[i])},
-                          {"to_mm", vec_json(guided->adjusted_to[i])}});
+  const nlohmann::json record = reconstruction.provenance();
+  provenance["landmarks"] = record["landmarks"];
+  provenance["landmarks"]["origin"] = landmark_origin;
+  if (detection) {
+    nlohmann::json details = nlohmann::json::array();
+    for (const DetectedLandmark& d : detection->details) {
+      details.push_back({{"name", d.name},
+                         {"rule", to_string(d.rule)},
+                         {"confidence", d.confidence},
+                         {"residual_mm", d.residual_mm},
+                         {"sharpness", d.sharpness},
+                         {"symmetry_error_mm", d.symmetry_error_mm},
+                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()}});
     }
-    provenance["guides_adjusted"] = adjusted;
+    const SkullRegistration& reg = detection->registration;
+    provenance["landmarks"]["detection"] = {{"reference", "template skull"},
+                                            {"similarity_scale", reg.similarity.scale},
+                                            {"similarity_rms_mm", reg.similarity_rms_mm},
+                                            {"non_rigid_rms_mm", reg.rms_mm},
+                                            {"landmarks", details}};
   }
+  provenance["guides"] = guides_record;
+  if (options.guides) provenance["guides_adjusted"] = record["guides_adjusted"];
   provenance["seed"] = job.seed;
-  nlohmann::json violations = {{"given_pairs_only", violations_json(result.violations_given_only)},
-                               {"with_interpolated_landmarks", violations_json(result.violations)}};
-  if (guided) violations["after_guides"] = violations_json(final_violations);
+  const nlohmann::json violations = reconstruction.violations_json();
 
   // 7. Outputs.
   RunFolder run(out, "reconstruct");
@@ -398,15 +360,30 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   run.add_output("skull_landmarks.mrk.json");
   write_landmarks(run.file("skin_landmarks.mrk.json"), skin_set);
   run.add_output("skin_landmarks.mrk.json");
+  if (uncertainty) {
+    nlohmann::json u = {{"samples", uncertainty->samples},
+                        {"seed", uncertainty->seed},
+                        {"method",
+                         "depths drawn from the table's means and SDs; spread = RMS distance of the members' "
+                         "vertex positions from their mean, per head.obj vertex"},
+                        {"max_spread_mm", uncertainty->max_spread_mm},
+                        {"mean_spread_mm", uncertainty->mean_spread_mm},
+                        {"vertex_spread_mm", uncertainty->vertex_spread_mm}};
+    run.write("uncertainty.json", u.dump());
+    // The head with its "uncertainty" vertex field (mm), for ParaView and forensim serve's viewer.
+    write_vtu(run.file("head_uncertainty.vtu"), final_skin);
+    run.add_output("head_uncertainty.vtu");
+    provenance["uncertainty"] = {{"samples", uncertainty->samples}, {"seed", uncertainty->seed}};
+  }
   for (const auto& [file, bytes] : pictures) run.write(file, bytes);
   run.write("violations.json", violations.dump(2));
   run.write("provenance.json", provenance.dump(2));
   timings.add("write", watch.lap());
   for (const auto& [stage, seconds] : timings.stages()) run.timings().add(stage, seconds);
-  run.facts()["given_pairs"] = result.given_pair_count;
-  run.facts()["interpolated_pairs"] = result.targets.size() - result.given_pair_count;
+  run.facts()["given_pairs"] = fit.given_pair_count;
+  run.facts()["interpolated_pairs"] = fit.targets.size() - fit.given_pair_count;
   run.facts()["violations_before"] = result.violations_given_only.total();
-  run.facts()["violations_after"] = final_violations.total();
+  run.facts()["violations_after"] = result.violations_final.total();
   run.facts()["seconds_total"] = total.seconds();
   run.write_record();
   return run.facts();
@@ -429,7 +406,8 @@ const RegisterCommand reconstruct_command{
           ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--bone-iso", j.bone_iso, "CT bone iso-value in stored units (default 1150 = 126 HU)");
       sub->add_option("--landmarks", j.landmarks,
-                      "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto'");
+                      "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto' (detected; "
+                      "the default for other skulls)");
       sub->add_option("--table", j.table, "Tissue-depth table: ttable_2023, rhine_1983 or a CSV file");
       sub->add_option("--sex", j.sex, "Group of the table: female, male or pooled")
           ->check(CLI::IsMember({"female", "male", "pooled"}));
@@ -450,6 +428,9 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--picture-size", j.picture_size, "Pixels per rendered view (0 = no renders)")
           ->check(CLI::Range(0, 4096));
       sub->add_option("--samples", j.samples, "Samples per pixel of the renders")->check(CLI::Range(1, 256));
+      sub->add_option("--uncertainty", j.uncertainty_samples,
+                      "Members of the uncertainty ensemble (depths drawn from the table's SDs; 0 = none)")
+          ->check(CLI::Range(0, 1000));
       return [a, sub]() { return run_reconstruct(*a, *sub); };
     }};
 

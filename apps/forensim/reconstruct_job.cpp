@@ -96,6 +96,14 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   if (j.texture_size != 0 && j.texture_size < 16) root.fail("texture_size", "must be 0 (no maps) or at least 16");
   j.picture_size = static_cast<int>(root.get_integer("picture_size", defaults.picture_size, 0, 4096));
   j.samples = static_cast<int>(root.get_integer("samples", defaults.samples, 1, 256));
+  if (root.has("uncertainty")) {
+    const JobNode u = root.child("uncertainty");
+    j.uncertainty_samples = static_cast<int>(u.get_integer("samples", 16, 2, 1000));
+    if (u.has("seed")) {
+      j.uncertainty_seed =
+          static_cast<std::uint64_t>(u.get_integer("seed", 0, 0, std::numeric_limits<long long>::max()));
+    }
+  }
   return j;
 }
 

@@ -9,7 +9,8 @@
 ///   unit, mesh_scale units of a mesh skull (auto, m, cm, mm, in; millimetres per unit)
 ///   bone_iso         CT bone iso-value (stored values; default 1150, i.e. 126 HU stored as HU + 1024)
 ///   landmarks        skull landmarks: a .mrk.json or .csv file, "template" (the template's skull landmarks,
-///                    for skulls in the template's frame) or "auto" (detection; not available yet)
+///                    for the built-in skull and the CT phantom) or "auto" (detected: the template's skull
+///                    registered onto the skull, each landmark refined by its definition, with a confidence)
 ///   table            "ttable_2023" (default), "rhine_1983" or a CSV table file
 ///   sex, population  group of the table ("" = any; pooled values stand in, with a note)
 ///   build            "" (the group's own values), slender, normal or obese (the table's build groups, or
@@ -22,6 +23,10 @@
 ///   seed             seed of the procedural skin maps
 ///   texture_size     skin map resolution (0 = no maps)
 ///   picture_size, samples  renders (picture_size 0 = no renders)
+///   uncertainty      {"samples": N, "seed": S}: an ensemble of N reconstructions (2..1000) with depths drawn from
+///                    the table's SDs (seed S, default the job's seed); writes the per-vertex spread
+///                    (uncertainty.json, head_uncertainty.vtu with the vertex field "uncertainty" in mm,
+///                    render_uncertainty.png)
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
@@ -40,7 +45,7 @@ struct ReconstructJob {
   std::string unit = "auto";
   double mesh_scale = 0.0;
   std::optional<double> bone_iso;
-  std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else required
+  std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else "auto"
   std::string table = "ttable_2023";
   std::string sex, population, build;
   double build_sd = 1.0;
@@ -53,6 +58,8 @@ struct ReconstructJob {
   int texture_size = 1024;
   int picture_size = 512;
   int samples = 4;
+  int uncertainty_samples = 0;  ///< 0: no ensemble
+  std::optional<std::uint64_t> uncertainty_seed;
 };
 
 /// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError

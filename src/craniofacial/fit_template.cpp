@@ -80,34 +80,59 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
     const RayCaster template_skull(head.skull), template_skin(head.skin);
     const InterpolatedLandmarks t =
         interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
-    const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, options.interpolation);
-    const std::vector<Vec3> t_skin = skin_points_along_normals(template_skin, t);
-    std::map<std::string, std::size_t> on_target;
-    for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
-    for (std::size_t i = 0; i < t.names.size(); ++i) {
-      const auto it = on_target.find(t.names[i]);
-      if (it == on_target.end()) continue;
-      const std::size_t k = it->second;
-      m_interpolated_names.push_back(t.names[i]);
-      m_result.interpolated.names.push_back(s.names[k]);
-      m_result.interpolated.skull.push_back(s.skull[k]);
-      m_result.interpolated.normals.push_back(s.normals[k]);
-      m_result.interpolated.depth_mm.push_back(s.depth_mm[k]);
-      m_result.pair_names.push_back(t.names[i]);
-      m_result.sources.push_back(t_skin[i]);
-      m_result.targets.push_back(s.skull[k] + s.depth_mm[k] * s.normals[k]);
-    }
+    m_template_interpolated_names = t.names;
+    m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
   }
+  m_points = std::move(points);
+  factor(target_interpolation());
+  m_result.seconds_total = total.seconds();
+}
 
+InterpolatedLandmarks TemplateFit::target_interpolation() const {
+  if (!m_options.interpolated_landmarks) return {};
+  return interpolate_landmarks(m_skull, *m_skull_rays, m_given, m_options.interpolation);
+}
+
+std::vector<std::string> TemplateFit::kept_interpolated_names(const InterpolatedLandmarks& s) const {
+  std::set<std::string> on_target(s.names.begin(), s.names.end());
+  std::vector<std::string> kept;
+  for (const std::string& name : m_template_interpolated_names)
+    if (on_target.count(name) > 0) kept.push_back(name);
+  return kept;
+}
+
+void TemplateFit::factor(const InterpolatedLandmarks& s) {
+  // The pair set: the given pairs, then every template interpolated point also found on the target.
+  const std::size_t given = m_result.given_pair_count;
+  m_result.pair_names.resize(given);
+  m_result.sources.resize(given);
+  m_result.targets.resize(given);
+  for (std::size_t i = 0; i < given; ++i) m_result.targets[i] = m_given.skull[i] + m_given.depth_vectors[i];
+  m_interpolated_names.clear();
+  m_result.interpolated = InterpolatedLandmarks{};
+  std::map<std::string, std::size_t> on_target;
+  for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
+  for (std::size_t i = 0; i < m_template_interpolated_names.size(); ++i) {
+    const auto it = on_target.find(m_template_interpolated_names[i]);
+    if (it == on_target.end()) continue;
+    const std::size_t k = it->second;
+    m_interpolated_names.push_back(m_template_interpolated_names[i]);
+    m_result.interpolated.names.push_back(s.names[k]);
+    m_result.interpolated.skull.push_back(s.skull[k]);
+    m_result.interpolated.normals.push_back(s.normals[k]);
+    m_result.interpolated.depth_mm.push_back(s.depth_mm[k]);
+    m_result.pair_names.push_back(m_template_interpolated_names[i]);
+    m_result.sources.push_back(m_template_interpolated_skin[i]);
+    m_result.targets.push_back(s.skull[k] + s.depth_mm[k] * s.normals[k]);
+  }
   Stopwatch setup;
   m_warp = std::make_unique<RbfWarp>(m_result.sources, m_result.targets, "landmark pairs");
-  m_points = std::make_unique<RbfPointWarp>(*m_warp, points);
+  m_point_warp = std::make_unique<RbfPointWarp>(*m_warp, m_points);
   m_result.seconds_setup = setup.seconds();
-  m_warped = m_points->warp(m_result.targets);
+  m_warped = m_point_warp->warp(m_result.targets);
   apply_positions();
   m_result.max_landmark_residual_mm = m_warp->max_landmark_residual();
-  if (options.count_violations) recount_violations();
-  m_result.seconds_total = total.seconds();
+  if (m_options.count_violations) recount_violations();
 }
 
 TemplateFit::~TemplateFit() = default;
@@ -125,28 +150,6 @@ void TemplateFit::apply_positions() {
   m_result.muscles = shape_muscles(m_result.muscle_layouts, m_result.skin);
 }
 
-std::vector<Vec3> TemplateFit::current_targets(InterpolatedLandmarks& record) const {
-  std::vector<Vec3> targets;
-  for (std::size_t i = 0; i < m_given.names.size(); ++i) targets.push_back(m_given.skull[i] + m_given.depth_vectors[i]);
-  record = m_result.interpolated;
-  if (m_interpolated_names.empty()) return targets;
-  const InterpolatedLandmarks s = interpolate_landmarks(m_skull, *m_skull_rays, m_given, m_options.interpolation);
-  std::map<std::string, std::size_t> on_target;
-  for (std::size_t i = 0; i < s.names.size(); ++i) on_target.emplace(s.names[i], i);
-  for (std::size_t j = 0; j < m_interpolated_names.size(); ++j) {
-    // A point the moved landmarks no longer reach keeps its previous target.
-    const auto it = on_target.find(m_interpolated_names[j]);
-    if (it != on_target.end()) {
-      const std::size_t k = it->second;
-      record.skull[j] = s.skull[k];
-      record.normals[j] = s.normals[k];
-      record.depth_mm[j] = s.depth_mm[k];
-    }
-    targets.push_back(record.skull[j] + record.depth_mm[j] * record.normals[j]);
-  }
-  return targets;
-}
-
 std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector) {
   std::size_t i = 0;
   while (i < m_input_names.size() && m_input_names[i] != name) ++i;
@@ -155,17 +158,100 @@ std::size_t TemplateFit::move_landmark(const std::string& name, const Vec3& skul
                 "non-finite position or depth vector");
   m_given.skull[i] = skull_position;
   m_given.depth_vectors[i] = depth_vector;
-  InterpolatedLandmarks record;
-  const std::vector<Vec3> targets = current_targets(record);
+  return retarget(feeds_interpolation(m_given.names[i]));
+}
+
+int TemplateFit::feeds_interpolation(const std::string& bone_name) const {
+  if (m_template_interpolated_names.empty()) return 0;
+  // What interpolate_landmarks reads: the cranium frame and breadth, and the mandible arcs' ends.
+  const LandmarkInterpolationOptions& o = m_options.interpolation;
+  int feeds = 0;
+  if (o.cranium) {
+    for (const char* name : {"g", "v", "op", "zy_L", "zy_R"})
+      if (bone_name == name) feeds |= k_cranium;
+  }
+  if (o.mandible) {
+    for (const LandmarkArc& arc : o.mandible_arcs)
+      if (bone_name == arc.from || bone_name == arc.to) feeds |= k_mandible;
+  }
+  return feeds;
+}
+
+std::size_t TemplateFit::set_landmarks(const std::vector<Vec3>& skull_positions,
+                                       const std::vector<Vec3>& depth_vectors) {
+  require_input(skull_positions.size() == m_given.names.size() && depth_vectors.size() == m_given.names.size(),
+                "fit landmarks", "", "positions and depth vectors must come one per landmark of the fit");
+  for (std::size_t i = 0; i < skull_positions.size(); ++i) {
+    require_input(std::isfinite(skull_positions[i].sum()) && std::isfinite(depth_vectors[i].sum()), "fit landmarks",
+                  m_input_names[i], "non-finite position or depth vector");
+  }
+  m_given.skull = skull_positions;
+  m_given.depth_vectors = depth_vectors;
+  return retarget(k_cranium | k_mandible);
+}
+
+std::size_t TemplateFit::retarget(int regenerate) {
+  if (regenerate == 0) return retarget_with(m_result.interpolated);
+  InterpolatedLandmarks s;
+  if (regenerate == (k_cranium | k_mandible)) {
+    s = target_interpolation();
+  } else {
+    // One generator again (the cranium cap's points are named "cranium_..."), the other's points kept.
+    LandmarkInterpolationOptions one = m_options.interpolation;
+    one.cranium = one.cranium && (regenerate & k_cranium) != 0;
+    one.mandible = one.mandible && (regenerate & k_mandible) != 0;
+    const InterpolatedLandmarks fresh = interpolate_landmarks(m_skull, *m_skull_rays, m_given, one);
+    const InterpolatedLandmarks& old = m_result.interpolated;
+    for (std::size_t i = 0; i < old.names.size(); ++i) {
+      const bool cranial = old.names[i].rfind("cranium_", 0) == 0;
+      if (cranial == ((regenerate & k_cranium) != 0)) continue;
+      s.names.push_back(old.names[i]);
+      s.skull.push_back(old.skull[i]);
+      s.normals.push_back(old.normals[i]);
+      s.depth_mm.push_back(old.depth_mm[i]);
+    }
+    s.names.insert(s.names.end(), fresh.names.begin(), fresh.names.end());
+    s.skull.insert(s.skull.end(), fresh.skull.begin(), fresh.skull.end());
+    s.normals.insert(s.normals.end(), fresh.normals.begin(), fresh.normals.end());
+    s.depth_mm.insert(s.depth_mm.end(), fresh.depth_mm.begin(), fresh.depth_mm.end());
+  }
+  if (kept_interpolated_names(s) != m_interpolated_names) {
+    // An interpolated point appeared or vanished: a new landmark set, factored anew from the whole set.
+    if (regenerate != (k_cranium | k_mandible)) s = target_interpolation();
+    const bool count = m_options.count_violations;
+    m_options.count_violations = false;
+    factor(s);
+    m_options.count_violations = count;
+    return m_result.targets.size();
+  }
+  return retarget_with(s);
+}
+
+std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
+  std::vector<Vec3> targets(m_result.targets.size());
+  const std::size_t given = m_result.given_pair_count;
+  for (std::size_t j = 0; j < given; ++j) targets[j] = m_given.skull[j] + m_given.depth_vectors[j];
+  InterpolatedLandmarks record = m_result.interpolated;
+  if (!m_interpolated_names.empty()) {
+    std::map<std::string, std::size_t> on_target;
+    for (std::size_t k = 0; k < s.names.size(); ++k) on_target.emplace(s.names[k], k);
+    for (std::size_t j = 0; j < m_interpolated_names.size(); ++j) {
+      const std::size_t k = on_target.at(m_interpolated_names[j]);
+      record.skull[j] = s.skull[k];
+      record.normals[j] = s.normals[k];
+      record.depth_mm[j] = s.depth_mm[k];
+      targets[given + j] = s.skull[k] + s.depth_mm[k] * s.normals[k];
+    }
+  }
   std::vector<std::size_t> changed;
   for (std::size_t j = 0; j < targets.size(); ++j) {
     if (targets[j] != m_result.targets[j]) changed.push_back(j);
   }
   // Few changes: add each one's cardinal function; many (the cranium frame moved): one product.
   if (changed.size() * 4 < targets.size()) {
-    for (const std::size_t j : changed) m_points->move_target(j, targets[j] - m_result.targets[j], m_warped);
+    for (const std::size_t j : changed) m_point_warp->move_target(j, targets[j] - m_result.targets[j], m_warped);
   } else {
-    m_warped = m_points->warp(targets);
+    m_warped = m_point_warp->warp(targets);
   }
   for (const std::size_t j : changed) m_warp->set_target(j, targets[j]);
   m_result.targets = targets;

@@ -66,16 +66,37 @@ class TemplateFit {
   const TemplateFitResult& result() const { return m_result; }
 
   /// Moves the given landmark `name` (as in the constructor) to a new skull position and depth vector, and
-  /// updates the interpolated targets that depend on it, the skin and the muscles. Violations are not
-  /// recounted (call recount_violations()). Returns the number of warp targets that changed.
+  /// updates the interpolated targets that depend on it, the skin and the muscles: the same result as a fresh
+  /// fit with the moved landmark. While the pair set stays the same the factorisation and the cardinal functions
+  /// are reused (O(#points) per changed target); when an interpolated point appears or vanishes on the target
+  /// the new pair set is factored anew. Violations are not recounted (call recount_violations()). Returns the
+  /// number of warp targets that changed (all of them after a new factorisation).
   std::size_t move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector);
+  /// All given landmarks at once (the constructor's order and names; e.g. new tissue depths): as
+  /// move_landmark, one re-targeting of the warp. Throws InputError for sizes that differ from the fit's
+  /// landmark count or non-finite values. Returns the number of warp targets that changed.
+  std::size_t set_landmarks(const std::vector<Vec3>& skull_positions, const std::vector<Vec3>& depth_vectors);
   /// Recounts result().violations for the current skin.
   void recount_violations();
 
  private:
-  /// Targets for the current given landmarks, and the interpolated record they come from.
-  std::vector<Vec3> current_targets(InterpolatedLandmarks& record) const;
+  /// The interpolated points on the target for the current given landmarks (none without interpolation).
+  InterpolatedLandmarks target_interpolation() const;
+  /// The template's interpolated points that `s` also holds, in the template's order.
+  std::vector<std::string> kept_interpolated_names(const InterpolatedLandmarks& s) const;
+  /// Builds the pair set from the given landmarks and `s`, factors the warp and warps every point.
+  void factor(const InterpolatedLandmarks& s);
   void apply_positions();
+  /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
+  /// `regenerate` (k_cranium, k_mandible or both): the interpolated generators run again on the target; the
+  /// others' points are kept (the moved landmarks do not feed them).
+  std::size_t retarget(int regenerate);
+  /// Targets from the given landmarks and the interpolated points `s` (holding every kept name).
+  std::size_t retarget_with(const InterpolatedLandmarks& s);
+  /// The generators of interpolate_landmarks that read the bone landmark `bone_name`: k_cranium (frame and
+  /// breadth), k_mandible (an arc's end), both or 0.
+  int feeds_interpolation(const std::string& bone_name) const;
+  static constexpr int k_cranium = 1, k_mandible = 2;
 
   const TemplateHead& m_head;
   TriMesh m_skull;
@@ -83,9 +104,12 @@ class TemplateFit {
   std::unique_ptr<RayCaster> m_skull_rays;
   LandmarkDepths m_given;  ///< the input, keyed by bone names for the interpolation
   std::vector<std::string> m_input_names;
-  std::vector<std::string> m_interpolated_names;  ///< the pairs kept (found on both skulls)
+  std::vector<std::string> m_template_interpolated_names;  ///< generated on the template's skull
+  std::vector<Vec3> m_template_interpolated_skin;          ///< their skin points on the template (sources)
+  std::vector<std::string> m_interpolated_names;           ///< the pairs kept (found on both skulls)
+  std::vector<Vec3> m_points;                              ///< skin vertices, skin-only landmarks, muscle grids
   std::unique_ptr<RbfWarp> m_warp;
-  std::unique_ptr<RbfPointWarp> m_points;  ///< skin vertices, then every muscle grid point
+  std::unique_ptr<RbfPointWarp> m_point_warp;  ///< cardinal functions at m_points
   std::vector<Vec3> m_warped;
   TemplateFitResult m_result;
 };

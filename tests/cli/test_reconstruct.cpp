@@ -77,17 +77,15 @@ TEST(ReconstructCli, BadLandmarkFilesExitNamingTheFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "d"));
 }
 
-TEST(ReconstructCli, AutomaticLandmarksOnAnotherSkullSayDetectionIsNotAvailable) {
-  const auto dir = test::scratch_dir("reconstruct_cli_auto");
+TEST(ReconstructCli, TemplateLandmarksOnAnotherSkullExitNamingTheOption) {
+  const auto dir = test::scratch_dir("reconstruct_cli_template_landmarks");
   write_text(dir / "tri.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
-  for (const std::string landmarks : {"--landmarks auto ", ""}) {
-    const auto r = run_cli(std::string(kSmall) + "--skull " + (dir / "tri.obj").string() + " " + landmarks + "-o " +
-                           (dir / "run").string());
-    EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
-    EXPECT_NE(r.output.find("--landmarks"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("not available yet"), std::string::npos) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(dir / "run"));
-  }
+  const auto r = run_cli(std::string(kSmall) + "--skull " + (dir / "tri.obj").string() + " --landmarks template -o " +
+                         (dir / "run").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("--landmarks"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'auto'"), std::string::npos) << r.output;  // the way out
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
 }
 
 TEST(ReconstructCli, JobFileWithUnknownKeyOrBadValueExitsWithJobCode) {
@@ -109,6 +107,17 @@ TEST(ReconstructCli, JobFileWithUnknownKeyOrBadValueExitsWithJobCode) {
   EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
   EXPECT_NE(r.output.find("athletic"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  // An ensemble of one member, and a misspelt key inside the uncertainty object.
+  write_text(dir / "one.json", R"({"uncertainty": {"samples": 1}})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "one.json").string() + " -o " + (dir / "e").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  EXPECT_NE(r.output.find("samples"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e"));
+  write_text(dir / "seeds.json", R"({"uncertainty": {"samples": 4, "seeds": 2}})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "seeds.json").string() + " -o " + (dir / "f").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  EXPECT_NE(r.output.find("seeds"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f"));
   // A guides file with a vector of two numbers.
   write_text(dir / "g.json", R"({"nasal_spine_tip": [1, 2]})");
   r = run_cli(std::string(kSmall) + "--guides " + (dir / "g.json").string() + " -o " + (dir / "d").string());
