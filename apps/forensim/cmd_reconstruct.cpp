@@ -5,6 +5,7 @@
 // depth vectors, the skull/skin violations, and a provenance record. Everything is computed before the output
 // folder is created, so bad input writes nothing.
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -14,6 +15,7 @@
 #include "core/job.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
+#include "craniofacial/face_expression.hpp"
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/reconstruction.hpp"
 #include "craniofacial/reconstruction_uncertainty.hpp"
@@ -43,7 +45,22 @@ struct ReconstructArgs {
   std::string guides_file;
   std::string out;
   bool no_interpolated = false;
+  std::string expressions;  ///< --expressions: comma-separated presets, or "none"
 };
+
+std::vector<std::string> split_expression_list(const std::string& text) {
+  std::vector<std::string> names;
+  if (text == "none") return names;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string name = text.substr(start, comma - start);
+    if (name.empty()) throw InputError("--expressions", text, "empty name in the list (use 'none' for no expressions)");
+    names.push_back(std::move(name));
+    start = comma + 1;
+  }
+  return names;
+}
 
 TemplateHeadOptions template_options(const std::string& detail) {
   TemplateHeadOptions o;
@@ -93,6 +110,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
   if (typed("--samples")) job.samples = cli_job.samples;
   if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
+  if (typed("--expressions")) job.expressions = split_expression_list(a.expressions);
   if (a.no_interpolated) job.interpolated_landmarks = false;
   nlohmann::json guides_record = nullptr;
   if (!a.guides_file.empty()) {
@@ -131,6 +149,13 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     const BuildVariants variants = build_variants(table, query, job.build_sd);
     depths = job.build == "slender" ? variants.slender : job.build == "obese" ? variants.obese : variants.normal;
     build_method = variants.method;
+  }
+
+  // Expression names: checked (closest preset named) before anything costly.
+  for (std::size_t i = 0; i < job.expressions.size(); ++i) {
+    static_cast<void>(expression_preset(job.expressions[i]));
+    for (std::size_t k = 0; k < i; ++k)
+      if (job.expressions[k] == job.expressions[i]) throw InputError("expressions", job.expressions[i], "listed twice");
   }
 
   // 3. Skull and landmarks (files are read before the template is built, so their errors come quickly).
@@ -199,6 +224,14 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
         reconstruction_uncertainty(reconstruction, job.uncertainty_samples, job.uncertainty_seed.value_or(job.seed));
     final_skin.vertex_fields.scalars["uncertainty"] = uncertainty->vertex_spread_mm;
     timings.add("uncertainty", watch.lap());
+  }
+
+  // Expressions (paper section 5): the muscles contracted under the reconstructed skin, over the target skull;
+  // each preset becomes a morph target of the head in the GLB.
+  std::vector<MorphTarget> expression_targets;
+  if (!job.expressions.empty()) {
+    expression_targets = expression_morph_targets(result.skin, skull.mesh, result.muscles, job.expressions);
+    timings.add("expressions", watch.lap());
   }
 
   // 5. Landmark sets, maps, pictures: all in memory.
@@ -272,6 +305,31 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       cells.push_back({std::move(map), "uncertainty (" + std::to_string(uncertainty->samples) + " samples)"});
     }
     pictures.emplace_back("reconstruction.png", encode_png(make_sheet(cells, 4, "forensim reconstruct")));
+    if (!expression_targets.empty()) {
+      // The expressions sheet: the neutral face, then each preset, from the front.
+      std::vector<SheetCell> expression_cells;
+      SurfaceMaterial skin_material = SurfaceMaterial::skin();
+      if (epidermis) {
+        skin_material.colour_source = ColourSource::texture;
+        skin_material.base_colour = Vec3f(1, 1, 1);
+        skin_material.base_texture = epidermis;
+        skin_material.normal_map = normal_map;
+      }
+      auto render_face = [&](std::shared_ptr<const TriMesh> mesh) {
+        Scene scene;
+        scene.environment.up = axes.up;
+        scene.add(std::move(mesh), skin_material, "skin");
+        return render_view(scene, settings, "front", axes);
+      };
+      expression_cells.push_back({render_face(skin_ptr), "neutral"});
+      for (const MorphTarget& target : expression_targets) {
+        auto posed = std::make_shared<TriMesh>(final_skin);
+        for (std::size_t v = 0; v < posed->positions.size(); ++v) posed->positions[v] += target.position_deltas[v];
+        expression_cells.push_back({render_face(posed), target.name});
+      }
+      pictures.emplace_back("expressions.png",
+                            encode_png(make_sheet(expression_cells, 4, "forensim reconstruct: expressions")));
+    }
     timings.add("renders", watch.lap());
   }
 
@@ -319,6 +377,17 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   }
   provenance["guides"] = guides_record;
   if (options.guides) provenance["guides_adjusted"] = record["guides_adjusted"];
+  if (!expression_targets.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const MorphTarget& target : expression_targets) {
+      double largest = 0.0;
+      for (const Vec3& d : target.position_deltas) largest = std::max(largest, d.norm());
+      list.push_back({{"name", target.name}, {"max_displacement_mm", largest}});
+    }
+    provenance["expressions"] = {
+        {"model", "skin-muscle-skull springs with linear and sphincter muscles (paper section 5)"},
+        {"morph_targets", list}};
+  }
   provenance["seed"] = job.seed;
   const nlohmann::json violations = reconstruction.violations_json();
 
@@ -330,6 +399,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   GltfMeshNode head_node;
   head_node.name = "head";
   head_node.mesh = final_skin;
+  head_node.morph_targets = expression_targets;
   if (epidermis) {
     head_node.textures.base_color_png = encode_png(*epidermis);
     head_node.textures.normal_png = encode_png(*normal_map);
@@ -384,6 +454,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   run.facts()["interpolated_pairs"] = fit.targets.size() - fit.given_pair_count;
   run.facts()["violations_before"] = result.violations_given_only.total();
   run.facts()["violations_after"] = result.violations_final.total();
+  run.facts()["expressions"] = expression_targets.size();
   run.facts()["seconds_total"] = total.seconds();
   run.write_record();
   return run.facts();
@@ -431,6 +502,9 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--uncertainty", j.uncertainty_samples,
                       "Members of the uncertainty ensemble (depths drawn from the table's SDs; 0 = none)")
           ->check(CLI::Range(0, 1000));
+      sub->add_option("--expressions", a->expressions,
+                      "Expression presets as morph targets, comma-separated (neutral, smile, frown, worried, "
+                      "surprise), or 'none'; default smile,frown,surprise");
       return [a, sub]() { return run_reconstruct(*a, *sub); };
     }};
 

@@ -1,8 +1,11 @@
 #include "reconstruct_job.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "craniofacial/face_expression.hpp"
 
 namespace forensim::cli {
 namespace {
@@ -102,6 +105,21 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
     if (u.has("seed")) {
       j.uncertainty_seed =
           static_cast<std::uint64_t>(u.get_integer("seed", 0, 0, std::numeric_limits<long long>::max()));
+    }
+  }
+  if (root.has("expressions")) {
+    j.expressions = root.get<std::vector<std::string>>("expressions", defaults.expressions);
+    const std::vector<std::string> presets = expression_preset_names();
+    for (std::size_t i = 0; i < j.expressions.size(); ++i) {
+      const std::string& name = j.expressions[i];
+      if (std::find(presets.begin(), presets.end(), name) == presets.end()) {
+        std::string known;
+        for (const auto& p : presets) known += (known.empty() ? "" : ", ") + p;
+        root.fail("expressions", "unknown expression '" + name + "' (known: " + known + ")");
+      }
+      if (std::find(j.expressions.begin(), j.expressions.begin() + static_cast<std::ptrdiff_t>(i), name) !=
+          j.expressions.begin() + static_cast<std::ptrdiff_t>(i))
+        root.fail("expressions", "'" + name + "' is listed twice");
     }
   }
   return j;

@@ -27,12 +27,16 @@
 ///                    the table's SDs (seed S, default the job's seed); writes the per-vertex spread
 ///                    (uncertainty.json, head_uncertainty.vtu with the vertex field "uncertainty" in mm,
 ///                    render_uncertainty.png)
+///   expressions      expression presets written as the GLB's morph targets (shape keys) and drawn in
+///                    expressions.png: a list of names from neutral, smile, frown, worried, surprise (default
+///                    ["smile", "frown", "surprise"]; [] for none)
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/job.hpp"
 #include "craniofacial/face_guides.hpp"
@@ -60,6 +64,7 @@ struct ReconstructJob {
   int samples = 4;
   int uncertainty_samples = 0;  ///< 0: no ensemble
   std::optional<std::uint64_t> uncertainty_seed;
+  std::vector<std::string> expressions = {"smile", "frown", "surprise"};
 };
 
 /// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError

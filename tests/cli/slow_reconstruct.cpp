@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 #include "core/atomic_file.hpp"
@@ -48,17 +50,31 @@ TEST(SlowReconstructCli, DefaultsWriteEveryOutput) {
   const auto& out = builtin_run();
   for (const char* f : {"head.glb", "head.obj", "head.mtl", "head_epidermis.png", "head_normal.png", "skull.obj",
                         "skull_landmarks.mrk.json", "skin_landmarks.mrk.json", "render_front.png", "render_side.png",
-                        "render_three_quarter.png", "render_textured.png", "reconstruction.png", "violations.json",
-                        "provenance.json", "run.json"}) {
+                        "render_three_quarter.png", "render_textured.png", "reconstruction.png", "expressions.png",
+                        "violations.json", "provenance.json", "run.json"}) {
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   }
-  EXPECT_EQ(read_file(out / "head.glb").substr(0, 4), "glTF");
+  const std::string glb = read_file(out / "head.glb");
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  // The default expressions are the head's morph targets, named for Blender's shape keys, and each moves the face.
+  EXPECT_NE(glb.find("targetNames"), std::string::npos);
+  const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
+  const auto& targets = provenance["expressions"]["morph_targets"];
+  ASSERT_EQ(targets.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string name = targets[i]["name"].get<std::string>();
+    EXPECT_EQ(name, std::vector<std::string>({"smile", "frown", "surprise"})[i]);
+    EXPECT_NE(glb.find("\"" + name + "\""), std::string::npos) << name;
+    EXPECT_GT(targets[i]["max_displacement_mm"].get<double>(), 1.0) << name;
+    EXPECT_LT(targets[i]["max_displacement_mm"].get<double>(), 30.0) << name;
+  }
   // No temporary files left behind.
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
   }
   const auto run = nlohmann::json::parse(read_file(out / "run.json"));
   EXPECT_EQ(run["facts"]["given_pairs"].get<int>(), 36);
+  EXPECT_EQ(run["facts"]["expressions"].get<int>(), 3);
   EXPECT_GT(run["facts"]["interpolated_pairs"].get<int>(), 0);
   const auto violations = nlohmann::json::parse(read_file(out / "violations.json"));
   EXPECT_TRUE(violations.contains("given_pairs_only"));

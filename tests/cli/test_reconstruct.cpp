@@ -46,6 +46,26 @@ TEST(ReconstructCli, UnknownTableExitsWithInputCodeNamingIt) {
   EXPECT_FALSE(std::filesystem::exists(dir / "run2"));
 }
 
+TEST(ReconstructCli, UnknownOrRepeatedExpressionsExitNamingThem) {
+  const auto dir = test::scratch_dir("reconstruct_cli_expressions");
+  auto r = run_cli(std::string(kSmall) + "--expressions smile,grin -o " + (dir / "a").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("grin"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a"));
+  r = run_cli(std::string(kSmall) + "--expressions smile,,frown -o " + (dir / "b").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("--expressions"), std::string::npos) << r.output;
+  write_text(dir / "repeat.json", R"({"expressions": ["smile", "frown", "smile"]})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "repeat.json").string() + " -o " + (dir / "c").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  EXPECT_NE(r.output.find("expressions"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("twice"), std::string::npos) << r.output;
+  write_text(dir / "wrong.json", R"({"expressions": "smile"})");
+  r = run_cli(std::string(kSmall) + "--job " + (dir / "wrong.json").string() + " -o " + (dir / "d").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::job)) << r.output;
+  for (const char* run : {"b", "c", "d"}) EXPECT_FALSE(std::filesystem::exists(dir / run)) << run;
+}
+
 TEST(ReconstructCli, BadLandmarkFilesExitNamingTheFile) {
   const auto dir = test::scratch_dir("reconstruct_cli_landmarks");
   // An unknown label in a markups file.
