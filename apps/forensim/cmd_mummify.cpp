@@ -25,9 +25,12 @@
 #include "desiccation/desiccation_pictures.hpp"
 #include "desiccation/desiccation_sim.hpp"
 #include "image/png_io.hpp"
+#include "mummify_checkpoint.hpp"
 #include "mummify_job.hpp"
 #include "mummify_run.hpp"
 #include "mummify_skin.hpp"
+#include "mummify_skin_motion.hpp"
+#include "pbd/wrinkle_measure.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
@@ -203,7 +206,19 @@ int run_mummify(const MummifyArgs& a) {
   const DesiccationModel model = make_desiccation_model(std::move(body), job.settings);
   Stopwatch skin_setup;
   const MummifySkin skin(model.body, job.settings.tissue.initial_moisture, job.skin);
+  MummifySkinMotion motion(model.body, job.settings.tissue.initial_moisture, job.skin_motion);
   run.timings().add("skin setup", skin_setup.seconds());
+  if (motion.pbd()) {
+    const SkinModel& sm = motion.model();
+    std::printf(
+        "skin motion: position-based, %zu stretch and %zu bending constraints (%zu and %zu colours), r_max %.3f mm "
+        "(%.4f of %.0f mm), damping %.2f, %d iterations, %d substeps per shape solve\n",
+        sm.stretch.size(), sm.bending.size(), sm.stretch_groups.size(), sm.bending_groups.size(), sm.r_max_mm,
+        sm.settings.wrinkle.r_max_relative, sm.model_size_mm, sm.settings.wrinkle.damping, sm.settings.iterations,
+        job.skin_motion.substeps);
+  } else {
+    std::printf("skin motion: glued to the volume (\"pbd\": false)\n");
+  }
   std::printf("skin: %zu vertices, livor blood level %.1f mm above the lowest point (%zu in contact)%s\n",
               model.body.skin.vertex_count(), skin.livor().blood_level_mm - skin.livor().height_min_mm,
               static_cast<std::size_t>(
@@ -227,7 +242,9 @@ int run_mummify(const MummifyArgs& a) {
   std::vector<CurveRow> rows;
   std::vector<PvdEntry> entries, skin_entries;
   if (a.resume && std::filesystem::exists(checkpoint)) {
-    state = read_desiccation_checkpoint(checkpoint, model.body.volume.vertex_count());
+    const MummifyCheckpoint saved = read_mummify_checkpoint(checkpoint, model.body.volume.vertex_count());
+    state = saved.state;
+    motion.restore(saved.skin, state, checkpoint.string());
     rows = read_rows(run.file("curves.csv"), model, state.time_s / 86400.0);
     for (const PvdEntry& e : read_pvd(run.file("desiccation.pvd")))
       if (e.time <= state.time_s / 86400.0 + 1e-9) entries.push_back(e);
@@ -240,11 +257,12 @@ int run_mummify(const MummifyArgs& a) {
   run.add_output("desiccation.pvd");
   PvdSeries skin_series(run.file("skin.pvd"), skin_entries);
   run.add_output("skin.pvd");
-  double seconds_skin = 0.0;
+  double seconds_skin = 0.0, seconds_skin_motion = 0.0;
+  long long skin_steps = 0;
   auto write_frames = [&](int frame) {
     write_frame(run, series, model, state, frame);
     Stopwatch skin_watch;
-    skin_series.add(state.time_s / 86400.0, skin.write_frame(run.path(), skin.frame(state), frame));
+    skin_series.add(state.time_s / 86400.0, skin.write_frame(run.path(), skin.frame(state, motion.positions()), frame));
     seconds_skin += skin_watch.seconds();
   };
   if (rows.empty()) rows.push_back({0.0, desiccation_totals(model, state)});
@@ -261,7 +279,15 @@ int run_mummify(const MummifyArgs& a) {
     // The quasi-static shape follows the moisture: solved every `deform_every` steps and at every frame.
     const long long next = state.step_count + 1;
     const bool deform = next % job.deform_every == 0 || frame_of_step(next) >= 0 || next == total_steps;
+    // The skin steps with each shape solve, from the previous shape (the positions change only at those).
+    std::vector<Vec3> previous_shape;
+    if (deform) previous_shape = state.positions;
     const DesiccationStepReport r = solver.step(state, dt, deform);
+    if (deform) {
+      const SkinMotionReport m = motion.advance(previous_shape, state);
+      seconds_skin_motion += m.seconds;
+      skin_steps += m.steps;
+    }
     deformation_iterations += r.deformation_iterations;
     deformations += deform ? 1 : 0;
     seconds_diffusion += r.seconds_diffusion;
@@ -274,11 +300,11 @@ int run_mummify(const MummifyArgs& a) {
     if (frame > 0) {
       write_frames(frame);
       run.write("curves.csv", csv_text(rows, model.body.part_names));
-      write_desiccation_checkpoint(checkpoint, state);
+      write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
       run.write_record();
     }
     if (interrupt_requested()) {
-      write_desiccation_checkpoint(checkpoint, state);
+      write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
       run.write("curves.csv", csv_text(rows, model.body.part_names));
       run.write_record();
       throw CancelledError("mummify interrupted at day " + std::to_string(state.time_s / 86400.0) +
@@ -287,7 +313,7 @@ int run_mummify(const MummifyArgs& a) {
   }
   progress.finish();
   run.write("curves.csv", csv_text(rows, model.body.part_names));
-  write_desiccation_checkpoint(checkpoint, state);
+  write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
   run.add_output("checkpoint.bin");
   if (moisture_steps > 0)
     std::printf(
@@ -297,7 +323,11 @@ int run_mummify(const MummifyArgs& a) {
         deformations > 0 ? static_cast<double>(deformation_iterations) / static_cast<double>(deformations) : 0.0);
   run.timings().add("moisture steps", seconds_diffusion);
   run.timings().add("deformation steps", seconds_deformation);
+  run.timings().add("skin motion", seconds_skin_motion);
   run.timings().add("skin frames", seconds_skin);
+  if (skin_steps > 0)
+    std::printf("skin: %lld position-based steps, %.1f ms each\n", skin_steps,
+                1e3 * seconds_skin_motion / static_cast<double>(skin_steps));
   write_plots(run, rows, model.body.part_names);
 
   // The skin over time, read back from its frames (so a resumed run writes the same as one run straight through).
@@ -324,6 +354,18 @@ int run_mummify(const MummifyArgs& a) {
   run.facts()["skin_mean_colour_end"] = {dried[0], dried[1], dried[2]};
   const double moisture_end = mean_skin_moisture(skin.rest_skin(), skin_frames.back());
   run.facts()["skin_mean_moisture_end"] = moisture_end;
+  // How wrinkled the final skin is: the fine part of its lift-off from the skin glued to the final volume, and
+  // the measures of the skin alone (pbd/wrinkle_measure.hpp).
+  const std::vector<Vec3> glued = skin_positions_for_frame(model.body, skin_rest_offsets(model.body), state.positions);
+  const double wrinkle_height = wrinkle_height_mm(motion.positions(), glued, model.body.skin.triangles);
+  const WrinkleMeasure wrinkles = wrinkle_measure(motion.positions(), model.body.skin.triangles);
+  run.facts()["skin_pbd"] = motion.pbd();
+  run.facts()["skin_steps"] = motion.step_count();
+  run.facts()["skin_wrinkle_height_mm"] = wrinkle_height;
+  run.facts()["skin_wrinkle_rms_mm"] = wrinkles.rms_smooth_distance_mm;
+  run.facts()["skin_mean_abs_curvature_per_mm"] = wrinkles.mean_abs_curvature_per_mm;
+  std::printf("skin wrinkles: height %.4f mm over the glued skin, RMS from smoothed %.4f mm, mean |H| %.5f /mm\n",
+              wrinkle_height, wrinkles.rms_smooth_distance_mm, wrinkles.mean_abs_curvature_per_mm);
   std::printf(
       "skin: %zu frames in skin.glb; mean moisture ratio %.2f at the end; mean linear colour (%.3f, %.3f, %.3f) -> "
       "(%.3f, %.3f, %.3f)\n",
@@ -408,6 +450,9 @@ const RegisterCommand mummify_command{
           ->check(CLI::Range(-1.0, 1000.0));
       sub->add_option("--map-size", a->map_size, "Texels per side of the baked skin colour maps (0: none)")
           ->check(CLI::Range(0, 8192));
+      sub->add_option("--wrinkle-set", a->wrinkle_set,
+                      "Figure 8's wrinkle controls: 0 (r_max 0.001, damping 0.5), 1 (0.002, 0.2), 2 (0.004, 0.08)")
+          ->check(CLI::Range(0, 2));
       sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(64, 4096));
       return [a]() { return run_mummify(*a); };
     }};
