@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "body/body_model_io.hpp"
@@ -29,8 +30,10 @@
 #include "mummify_job.hpp"
 #include "mummify_run.hpp"
 #include "mummify_skin.hpp"
+#include "mummify_skin_checks.hpp"
 #include "mummify_skin_motion.hpp"
 #include "pbd/wrinkle_measure.hpp"
+#include "pictures.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
@@ -219,6 +222,24 @@ int run_mummify(const MummifyArgs& a) {
   } else {
     std::printf("skin motion: glued to the volume (\"pbd\": false)\n");
   }
+  // Figure 8's three wrinkle controls on the same drying volume, for comparison (the volume does not depend on
+  // the skin, so one run drives all three).
+  std::vector<std::unique_ptr<MummifySkinMotion>> figure8;
+  if (job.figure8) {
+    require_input(motion.pbd(), a.job.empty() ? "command line" : a.job, "figure8",
+                  "compares position-based skins; it needs \"pbd\": true");
+    for (int set = 0; set < 3; ++set) {
+      SkinMotionJob j = job.skin_motion;
+      j.wrinkle_set = set;
+      j.settings.wrinkle = WrinkleControls::figure8(set);
+      figure8.push_back(std::make_unique<MummifySkinMotion>(model.body, job.settings.tissue.initial_moisture, j));
+    }
+  }
+  auto all_checkpoints = [&] {
+    std::vector<std::string> skins{motion.checkpoint_bytes()};
+    for (const auto& f : figure8) skins.push_back(f->checkpoint_bytes());
+    return skins;
+  };
   std::printf("skin: %zu vertices, livor blood level %.1f mm above the lowest point (%zu in contact)%s\n",
               model.body.skin.vertex_count(), skin.livor().blood_level_mm - skin.livor().height_min_mm,
               static_cast<std::size_t>(
@@ -244,7 +265,12 @@ int run_mummify(const MummifyArgs& a) {
   if (a.resume && std::filesystem::exists(checkpoint)) {
     const MummifyCheckpoint saved = read_mummify_checkpoint(checkpoint, model.body.volume.vertex_count());
     state = saved.state;
-    motion.restore(saved.skin, state, checkpoint.string());
+    require_input(saved.skins.size() == 1 + figure8.size(), checkpoint.string(), "skins",
+                  "holds " + std::to_string(saved.skins.size()) + " skin states, the job runs " +
+                      std::to_string(1 + figure8.size()) + " (figure8 given on one of the runs only?)");
+    motion.restore(saved.skins[0], state, checkpoint.string());
+    for (std::size_t k = 0; k < figure8.size(); ++k)
+      figure8[k]->restore(saved.skins[k + 1], state, checkpoint.string());
     rows = read_rows(run.file("curves.csv"), model, state.time_s / 86400.0);
     for (const PvdEntry& e : read_pvd(run.file("desiccation.pvd")))
       if (e.time <= state.time_s / 86400.0 + 1e-9) entries.push_back(e);
@@ -286,6 +312,7 @@ int run_mummify(const MummifyArgs& a) {
     if (deform) {
       const SkinMotionReport m = motion.advance(previous_shape, state);
       seconds_skin_motion += m.seconds;
+      for (const auto& f : figure8) f->advance(previous_shape, state);
       skin_steps += m.steps;
     }
     deformation_iterations += r.deformation_iterations;
@@ -300,11 +327,11 @@ int run_mummify(const MummifyArgs& a) {
     if (frame > 0) {
       write_frames(frame);
       run.write("curves.csv", csv_text(rows, model.body.part_names));
-      write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
+      write_mummify_checkpoint(checkpoint, state, all_checkpoints());
       run.write_record();
     }
     if (interrupt_requested()) {
-      write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
+      write_mummify_checkpoint(checkpoint, state, all_checkpoints());
       run.write("curves.csv", csv_text(rows, model.body.part_names));
       run.write_record();
       throw CancelledError("mummify interrupted at day " + std::to_string(state.time_s / 86400.0) +
@@ -313,7 +340,7 @@ int run_mummify(const MummifyArgs& a) {
   }
   progress.finish();
   run.write("curves.csv", csv_text(rows, model.body.part_names));
-  write_mummify_checkpoint(checkpoint, state, motion.checkpoint_bytes());
+  write_mummify_checkpoint(checkpoint, state, all_checkpoints());
   run.add_output("checkpoint.bin");
   if (moisture_steps > 0)
     std::printf(
@@ -366,6 +393,45 @@ int run_mummify(const MummifyArgs& a) {
   run.facts()["skin_mean_abs_curvature_per_mm"] = wrinkles.mean_abs_curvature_per_mm;
   std::printf("skin wrinkles: height %.4f mm over the glued skin, RMS from smoothed %.4f mm, mean |H| %.5f /mm\n",
               wrinkle_height, wrinkles.rms_smooth_distance_mm, wrinkles.mean_abs_curvature_per_mm);
+  // Does the skin cling to the bones, and is it still a clean surface?
+  const std::size_t inverted = inverted_skin_triangles(model.body.skin, motion.positions());
+  const std::size_t crossings = skin_self_intersections(model.body.skin, motion.positions());
+  run.facts()["skin_inverted_triangles"] = inverted;
+  run.facts()["skin_self_intersections"] = crossings;
+  const std::vector<double> bone_start =
+      part_bone_distance_mm(model.body, model.body.skin.positions, model.body.volume.positions);
+  const std::vector<double> bone_end = part_bone_distance_mm(model.body, motion.positions(), state.positions);
+  if (!bone_start.empty()) {
+    nlohmann::json parts = nlohmann::json::object();
+    std::vector<std::size_t> counts(model.body.part_names.size(), 0);
+    for (int p : model.body.skin_vertex_parts) ++counts[static_cast<std::size_t>(p)];
+    for (std::size_t p = 0; p < bone_start.size(); ++p)
+      parts[model.body.part_names[p]] = {
+          {"start_mm", bone_start[p]}, {"end_mm", bone_end[p]}, {"skin_vertices", counts[p]}};
+    run.facts()["skin_bone_distance"] = parts;
+  }
+  std::printf("skin: %zu inverted triangles, %zu self-crossings at the end\n", inverted, crossings);
+  std::vector<double> figure8_height;
+  if (!figure8.empty()) {
+    nlohmann::json sets = nlohmann::json::array();
+    for (std::size_t k = 0; k < figure8.size(); ++k) {
+      const std::vector<Vec3>& x = figure8[k]->positions();
+      const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
+      const WrinkleMeasure w = wrinkle_measure(x, model.body.skin.triangles);
+      figure8_height.push_back(wrinkle_height_mm(x, glued, model.body.skin.triangles));
+      sets.push_back({{"set", k},
+                      {"r_max_relative", c.r_max_relative},
+                      {"damping", c.damping},
+                      {"wrinkle_height_mm", figure8_height.back()},
+                      {"wrinkle_rms_mm", w.rms_smooth_distance_mm},
+                      {"mean_abs_curvature_per_mm", w.mean_abs_curvature_per_mm},
+                      {"inverted_triangles", inverted_skin_triangles(model.body.skin, x)}});
+      std::printf(
+          "figure 8 set %zu (r_max %.3f, damping %.2f): wrinkle height %.4f mm, RMS %.4f mm, mean |H| %.5f /mm\n", k,
+          c.r_max_relative, c.damping, figure8_height.back(), w.rms_smooth_distance_mm, w.mean_abs_curvature_per_mm);
+    }
+    run.facts()["figure8"] = sets;
+  }
   std::printf(
       "skin: %zu frames in skin.glb; mean moisture ratio %.2f at the end; mean linear colour (%.3f, %.3f, %.3f) -> "
       "(%.3f, %.3f, %.3f)\n",
@@ -414,6 +480,23 @@ int run_mummify(const MummifyArgs& a) {
     write_png(run.file("skin_turntable.png"), skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8,
                                                                    settings, kind + ", " + caption));
     for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
+    if (!figure8.empty()) {
+      std::vector<SheetCell> sets;
+      for (std::size_t k = 0; k < figure8.size(); ++k) {
+        SkinFrame f = skin_frames.back();
+        f.positions = figure8[k]->positions();
+        Scene scene;
+        const TriMesh mesh = skin_mesh_of_frame(skin.rest_skin(), f);
+        scene.add(mesh, material_from_name("vertex", mesh));
+        const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
+        char text[96];
+        std::snprintf(text, sizeof text, "r_max %.3f, damping %.2f: wrinkle height %.3f mm", c.r_max_relative,
+                      c.damping, figure8_height[k]);
+        sets.push_back({render_view(std::move(scene), settings, to_string(views.outside), views.axes), text});
+      }
+      write_png(run.file("figure8.png"), make_sheet(sets, 3, kind + ": Figure 8's wrinkle controls, " + caption));
+      run.add_output("figure8.png");
+    }
     run.timings().add("pictures", picture_watch.seconds());
   }
   run.write_record();
@@ -450,6 +533,9 @@ const RegisterCommand mummify_command{
           ->check(CLI::Range(-1.0, 1000.0));
       sub->add_option("--map-size", a->map_size, "Texels per side of the baked skin colour maps (0: none)")
           ->check(CLI::Range(0, 8192));
+      sub->add_flag("--figure8", a->figure8,
+                    "Also step Figure 8's three wrinkle controls on the same volume; compare them in figure8.png and "
+                    "the run's facts");
       sub->add_option("--wrinkle-set", a->wrinkle_set,
                       "Figure 8's wrinkle controls: 0 (r_max 0.001, damping 0.5), 1 (0.002, 0.2), 2 (0.004, 0.08)")
           ->check(CLI::Range(0, 2));

@@ -35,10 +35,14 @@ std::string get_section(const std::string& in, std::size_t& offset, const std::s
 }  // namespace
 
 void write_mummify_checkpoint(const std::filesystem::path& path, const DesiccationState& state,
-                              const std::string& skin_bytes) {
+                              const std::vector<std::string>& skins) {
   std::string out(magic, 8);
+  const auto count = static_cast<std::uint64_t>(skins.size());
+  char bytes[sizeof count];
+  std::memcpy(bytes, &count, sizeof count);
+  out.append(bytes, sizeof count);
   put_section(out, desiccation_checkpoint_bytes(state));
-  put_section(out, skin_bytes);
+  for (const std::string& skin : skins) put_section(out, skin);
   write_file_atomic(path, out);
 }
 
@@ -47,11 +51,15 @@ MummifyCheckpoint read_mummify_checkpoint(const std::filesystem::path& path, std
   const std::string in = read_file(path);
   require_input(in.size() >= 8 && std::memcmp(in.data(), magic, 8) == 0, source, "byte 0",
                 "not a forensim mummify checkpoint");
-  std::size_t offset = 8;
+  std::uint64_t count = 0;
+  require_input(in.size() >= 16, source, "byte 8", "ends before the number of skins");
+  std::memcpy(&count, in.data() + 8, sizeof count);
+  require_input(count <= 64, source, "byte 8", "implausible number of skins " + std::to_string(count));
+  std::size_t offset = 16;
   MummifyCheckpoint out;
   out.state = desiccation_state_from_bytes(get_section(in, offset, source, "desiccation"), vertex_count,
                                            source + " (desiccation)");
-  out.skin = get_section(in, offset, source, "skin");
+  for (std::uint64_t k = 0; k < count; ++k) out.skins.push_back(get_section(in, offset, source, "skin"));
   require_input(offset == in.size(), source, "byte " + std::to_string(offset), "unexpected bytes after the skin");
   return out;
 }

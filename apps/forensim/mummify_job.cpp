@@ -107,6 +107,7 @@ MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
   job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
   job.skin = load_skin_job(a, root.child("skin"), e.up);
   job.skin_motion = load_skin_motion_job(a, root.child("skin"));
+  job.figure8 = a.given("--figure8") ? a.figure8 : root.child("skin").get<bool>("figure8", a.figure8);
   return job;
 }
 

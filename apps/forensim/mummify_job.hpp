@@ -9,7 +9,7 @@
 ///               "shrinkage_efficiency", "skin_permeance_m_per_s"},
 ///    "skin": {"gravity", "contact_distance_mm", "map_resolution", "blood_fill", "residual_fill", "transition_mm",
 ///             "contact_capacity", "oxygen", "drying_boost", "oxygen_decay_hours",
-///             "pbd", "substeps", "iterations", "bending_interval", "skin_shrinkage",
+///             "pbd", "figure8", "substeps", "iterations", "bending_interval", "skin_shrinkage",
 ///             "wrinkle": {"set": 0|1|2} or {"r_max_relative", "damping"},
 ///             "slippage": {"stiffness", "decrease_below", "zero_below"}}}
 
@@ -34,7 +34,7 @@ struct MummifyArgs {
   int wrinkle_set = 1;          ///< --wrinkle-set: Figure 8's wrinkle controls (0, 1, 2)
   std::vector<double> gravity;  ///< --gravity x y z (empty: the job's, or down)
   double contact_mm = 3.0;
-  bool resume = false, no_pictures = false;
+  bool resume = false, no_pictures = false, figure8 = false;
   CLI::App* sub = nullptr;  ///< null: nothing was given on a command line (the server)
   bool given(const std::string& option) const { return sub != nullptr && sub->get_option(option)->count() > 0; }
 };
@@ -48,6 +48,7 @@ struct MummifyJob {
   DesiccationSettings settings;
   SkinShadingJob skin;        ///< the "skin" object: livor mortis start state and shading
   SkinMotionJob skin_motion;  ///< the "skin" object: the position-based skin (sections 8.1, 8.2)
+  bool figure8 = false;       ///< "skin"/"figure8": also run Figure 8's three wrinkle controls, for comparison
 };
 
 /// Reads a mummify job from `root` (a job file's root, or the "job" object of a server request). Throws
