@@ -36,7 +36,8 @@ std::size_t self_intersection_count(const TriMesh& mesh, double relative_margin)
       const bool touches =
           std::find(tri.begin(), tri.end(), a) != tri.end() || std::find(tri.begin(), tri.end(), b) != tri.end();
       if (!touches) crossings += 1.0;
-      t_min = std::nextafter(hit->t, std::numeric_limits<double>::infinity());
+      // The hit's t is refined in double and may fall a rounding step below t_min: always move forward.
+      t_min = std::nextafter(std::max(hit->t, t_min), std::numeric_limits<double>::infinity());
     }
     return crossings;
   });
