@@ -401,13 +401,16 @@ int run_mummify(const MummifyArgs& a) {
   const std::vector<double> bone_start =
       part_bone_distance_mm(model.body, model.body.skin.positions, model.body.volume.positions);
   const std::vector<double> bone_end = part_bone_distance_mm(model.body, motion.positions(), state.positions);
+  const std::vector<double> bone_glued = part_bone_distance_mm(model.body, glued, state.positions);
   if (!bone_start.empty()) {
     nlohmann::json parts = nlohmann::json::object();
     std::vector<std::size_t> counts(model.body.part_names.size(), 0);
     for (int p : model.body.skin_vertex_parts) ++counts[static_cast<std::size_t>(p)];
     for (std::size_t p = 0; p < bone_start.size(); ++p)
-      parts[model.body.part_names[p]] = {
-          {"start_mm", bone_start[p]}, {"end_mm", bone_end[p]}, {"skin_vertices", counts[p]}};
+      parts[model.body.part_names[p]] = {{"start_mm", bone_start[p]},
+                                         {"end_mm", bone_end[p]},
+                                         {"glued_end_mm", bone_glued[p]},
+                                         {"skin_vertices", counts[p]}};
     run.facts()["skin_bone_distance"] = parts;
   }
   std::printf("skin: %zu inverted triangles, %zu self-crossings at the end\n", inverted, crossings);
