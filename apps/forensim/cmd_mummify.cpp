@@ -493,11 +493,10 @@ int run_mummify(const MummifyArgs& a) {
         scene.add(mesh, material_from_name("vertex", mesh));
         const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
         char text[96];
-        std::snprintf(text, sizeof text, "r_max %.3f, damping %.2f: wrinkle height %.3f mm", c.r_max_relative,
-                      c.damping, figure8_height[k]);
+        std::snprintf(text, sizeof text, "(%.3f, %.2f): %.3f mm", c.r_max_relative, c.damping, figure8_height[k]);
         sets.push_back({render_view(std::move(scene), settings, to_string(views.outside), views.axes), text});
       }
-      write_png(run.file("figure8.png"), make_sheet(sets, 3, kind + ": Figure 8's wrinkle controls, " + caption));
+      write_png(run.file("figure8.png"), make_sheet(sets, 3, kind + ", " + caption + ": Figure 8 (r_max, damping)"));
       run.add_output("figure8.png");
     }
     run.timings().add("pictures", picture_watch.seconds());
