@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "body/body_model_io.hpp"
@@ -25,9 +26,14 @@
 #include "desiccation/desiccation_pictures.hpp"
 #include "desiccation/desiccation_sim.hpp"
 #include "image/png_io.hpp"
+#include "mummify_checkpoint.hpp"
 #include "mummify_job.hpp"
 #include "mummify_run.hpp"
 #include "mummify_skin.hpp"
+#include "mummify_skin_checks.hpp"
+#include "mummify_skin_motion.hpp"
+#include "pbd/wrinkle_measure.hpp"
+#include "pictures.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
@@ -203,7 +209,37 @@ int run_mummify(const MummifyArgs& a) {
   const DesiccationModel model = make_desiccation_model(std::move(body), job.settings);
   Stopwatch skin_setup;
   const MummifySkin skin(model.body, job.settings.tissue.initial_moisture, job.skin);
+  MummifySkinMotion motion(model.body, job.settings.tissue.initial_moisture, job.skin_motion);
   run.timings().add("skin setup", skin_setup.seconds());
+  if (motion.pbd()) {
+    const SkinModel& sm = motion.model();
+    std::printf(
+        "skin motion: position-based, %zu stretch and %zu bending constraints (%zu and %zu colours), r_max %.3f mm "
+        "(%.4f of %.0f mm), damping %.2f, %d iterations, %d substeps per shape solve\n",
+        sm.stretch.size(), sm.bending.size(), sm.stretch_groups.size(), sm.bending_groups.size(), sm.r_max_mm,
+        sm.settings.wrinkle.r_max_relative, sm.model_size_mm, sm.settings.wrinkle.damping, sm.settings.iterations,
+        job.skin_motion.substeps);
+  } else {
+    std::printf("skin motion: glued to the volume (\"pbd\": false)\n");
+  }
+  // Figure 8's three wrinkle controls on the same drying volume, for comparison (the volume does not depend on
+  // the skin, so one run drives all three).
+  std::vector<std::unique_ptr<MummifySkinMotion>> figure8;
+  if (job.figure8) {
+    require_input(motion.pbd(), a.job.empty() ? "command line" : a.job, "figure8",
+                  "compares position-based skins; it needs \"pbd\": true");
+    for (int set = 0; set < 3; ++set) {
+      SkinMotionJob j = job.skin_motion;
+      j.wrinkle_set = set;
+      j.settings.wrinkle = WrinkleControls::figure8(set);
+      figure8.push_back(std::make_unique<MummifySkinMotion>(model.body, job.settings.tissue.initial_moisture, j));
+    }
+  }
+  auto all_checkpoints = [&] {
+    std::vector<std::string> skins{motion.checkpoint_bytes()};
+    for (const auto& f : figure8) skins.push_back(f->checkpoint_bytes());
+    return skins;
+  };
   std::printf("skin: %zu vertices, livor blood level %.1f mm above the lowest point (%zu in contact)%s\n",
               model.body.skin.vertex_count(), skin.livor().blood_level_mm - skin.livor().height_min_mm,
               static_cast<std::size_t>(
@@ -227,7 +263,14 @@ int run_mummify(const MummifyArgs& a) {
   std::vector<CurveRow> rows;
   std::vector<PvdEntry> entries, skin_entries;
   if (a.resume && std::filesystem::exists(checkpoint)) {
-    state = read_desiccation_checkpoint(checkpoint, model.body.volume.vertex_count());
+    const MummifyCheckpoint saved = read_mummify_checkpoint(checkpoint, model.body.volume.vertex_count());
+    state = saved.state;
+    require_input(saved.skins.size() == 1 + figure8.size(), checkpoint.string(), "skins",
+                  "holds " + std::to_string(saved.skins.size()) + " skin states, the job runs " +
+                      std::to_string(1 + figure8.size()) + " (figure8 given on one of the runs only?)");
+    motion.restore(saved.skins[0], state, checkpoint.string());
+    for (std::size_t k = 0; k < figure8.size(); ++k)
+      figure8[k]->restore(saved.skins[k + 1], state, checkpoint.string());
     rows = read_rows(run.file("curves.csv"), model, state.time_s / 86400.0);
     for (const PvdEntry& e : read_pvd(run.file("desiccation.pvd")))
       if (e.time <= state.time_s / 86400.0 + 1e-9) entries.push_back(e);
@@ -240,11 +283,12 @@ int run_mummify(const MummifyArgs& a) {
   run.add_output("desiccation.pvd");
   PvdSeries skin_series(run.file("skin.pvd"), skin_entries);
   run.add_output("skin.pvd");
-  double seconds_skin = 0.0;
+  double seconds_skin = 0.0, seconds_skin_motion = 0.0;
+  long long skin_steps = 0;
   auto write_frames = [&](int frame) {
     write_frame(run, series, model, state, frame);
     Stopwatch skin_watch;
-    skin_series.add(state.time_s / 86400.0, skin.write_frame(run.path(), skin.frame(state), frame));
+    skin_series.add(state.time_s / 86400.0, skin.write_frame(run.path(), skin.frame(state, motion.positions()), frame));
     seconds_skin += skin_watch.seconds();
   };
   if (rows.empty()) rows.push_back({0.0, desiccation_totals(model, state)});
@@ -261,7 +305,16 @@ int run_mummify(const MummifyArgs& a) {
     // The quasi-static shape follows the moisture: solved every `deform_every` steps and at every frame.
     const long long next = state.step_count + 1;
     const bool deform = next % job.deform_every == 0 || frame_of_step(next) >= 0 || next == total_steps;
+    // The skin steps with each shape solve, from the previous shape (the positions change only at those).
+    std::vector<Vec3> previous_shape;
+    if (deform) previous_shape = state.positions;
     const DesiccationStepReport r = solver.step(state, dt, deform);
+    if (deform) {
+      const SkinMotionReport m = motion.advance(previous_shape, state);
+      seconds_skin_motion += m.seconds;
+      for (const auto& f : figure8) f->advance(previous_shape, state);
+      skin_steps += m.steps;
+    }
     deformation_iterations += r.deformation_iterations;
     deformations += deform ? 1 : 0;
     seconds_diffusion += r.seconds_diffusion;
@@ -274,11 +327,11 @@ int run_mummify(const MummifyArgs& a) {
     if (frame > 0) {
       write_frames(frame);
       run.write("curves.csv", csv_text(rows, model.body.part_names));
-      write_desiccation_checkpoint(checkpoint, state);
+      write_mummify_checkpoint(checkpoint, state, all_checkpoints());
       run.write_record();
     }
     if (interrupt_requested()) {
-      write_desiccation_checkpoint(checkpoint, state);
+      write_mummify_checkpoint(checkpoint, state, all_checkpoints());
       run.write("curves.csv", csv_text(rows, model.body.part_names));
       run.write_record();
       throw CancelledError("mummify interrupted at day " + std::to_string(state.time_s / 86400.0) +
@@ -287,7 +340,7 @@ int run_mummify(const MummifyArgs& a) {
   }
   progress.finish();
   run.write("curves.csv", csv_text(rows, model.body.part_names));
-  write_desiccation_checkpoint(checkpoint, state);
+  write_mummify_checkpoint(checkpoint, state, all_checkpoints());
   run.add_output("checkpoint.bin");
   if (moisture_steps > 0)
     std::printf(
@@ -297,7 +350,11 @@ int run_mummify(const MummifyArgs& a) {
         deformations > 0 ? static_cast<double>(deformation_iterations) / static_cast<double>(deformations) : 0.0);
   run.timings().add("moisture steps", seconds_diffusion);
   run.timings().add("deformation steps", seconds_deformation);
+  run.timings().add("skin motion", seconds_skin_motion);
   run.timings().add("skin frames", seconds_skin);
+  if (skin_steps > 0)
+    std::printf("skin: %lld position-based steps, %.1f ms each\n", skin_steps,
+                1e3 * seconds_skin_motion / static_cast<double>(skin_steps));
   write_plots(run, rows, model.body.part_names);
 
   // The skin over time, read back from its frames (so a resumed run writes the same as one run straight through).
@@ -324,6 +381,60 @@ int run_mummify(const MummifyArgs& a) {
   run.facts()["skin_mean_colour_end"] = {dried[0], dried[1], dried[2]};
   const double moisture_end = mean_skin_moisture(skin.rest_skin(), skin_frames.back());
   run.facts()["skin_mean_moisture_end"] = moisture_end;
+  // How wrinkled the final skin is: the fine part of its lift-off from the skin glued to the final volume, and
+  // the measures of the skin alone (pbd/wrinkle_measure.hpp).
+  const std::vector<Vec3> glued = skin_positions_for_frame(model.body, skin_rest_offsets(model.body), state.positions);
+  const double wrinkle_height = wrinkle_height_mm(motion.positions(), glued, model.body.skin.triangles);
+  const WrinkleMeasure wrinkles = wrinkle_measure(motion.positions(), model.body.skin.triangles);
+  run.facts()["skin_pbd"] = motion.pbd();
+  run.facts()["skin_steps"] = motion.step_count();
+  run.facts()["skin_wrinkle_height_mm"] = wrinkle_height;
+  run.facts()["skin_wrinkle_rms_mm"] = wrinkles.rms_smooth_distance_mm;
+  run.facts()["skin_mean_abs_curvature_per_mm"] = wrinkles.mean_abs_curvature_per_mm;
+  std::printf("skin wrinkles: height %.4f mm over the glued skin, RMS from smoothed %.4f mm, mean |H| %.5f /mm\n",
+              wrinkle_height, wrinkles.rms_smooth_distance_mm, wrinkles.mean_abs_curvature_per_mm);
+  // Does the skin cling to the bones, and is it still a clean surface?
+  const std::size_t inverted = inverted_skin_triangles(model.body.skin, motion.positions());
+  const std::size_t crossings = skin_self_intersections(model.body.skin, motion.positions());
+  run.facts()["skin_inverted_triangles"] = inverted;
+  run.facts()["skin_self_intersections"] = crossings;
+  const std::vector<double> bone_start =
+      part_bone_distance_mm(model.body, model.body.skin.positions, model.body.volume.positions);
+  const std::vector<double> bone_end = part_bone_distance_mm(model.body, motion.positions(), state.positions);
+  const std::vector<double> bone_glued = part_bone_distance_mm(model.body, glued, state.positions);
+  if (!bone_start.empty()) {
+    nlohmann::json parts = nlohmann::json::object();
+    std::vector<std::size_t> counts(model.body.part_names.size(), 0);
+    for (int p : model.body.skin_vertex_parts) ++counts[static_cast<std::size_t>(p)];
+    for (std::size_t p = 0; p < bone_start.size(); ++p)
+      parts[model.body.part_names[p]] = {{"start_mm", bone_start[p]},
+                                         {"end_mm", bone_end[p]},
+                                         {"glued_end_mm", bone_glued[p]},
+                                         {"skin_vertices", counts[p]}};
+    run.facts()["skin_bone_distance"] = parts;
+  }
+  std::printf("skin: %zu inverted triangles, %zu self-crossings at the end\n", inverted, crossings);
+  std::vector<double> figure8_height;
+  if (!figure8.empty()) {
+    nlohmann::json sets = nlohmann::json::array();
+    for (std::size_t k = 0; k < figure8.size(); ++k) {
+      const std::vector<Vec3>& x = figure8[k]->positions();
+      const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
+      const WrinkleMeasure w = wrinkle_measure(x, model.body.skin.triangles);
+      figure8_height.push_back(wrinkle_height_mm(x, glued, model.body.skin.triangles));
+      sets.push_back({{"set", k},
+                      {"r_max_relative", c.r_max_relative},
+                      {"damping", c.damping},
+                      {"wrinkle_height_mm", figure8_height.back()},
+                      {"wrinkle_rms_mm", w.rms_smooth_distance_mm},
+                      {"mean_abs_curvature_per_mm", w.mean_abs_curvature_per_mm},
+                      {"inverted_triangles", inverted_skin_triangles(model.body.skin, x)}});
+      std::printf(
+          "figure 8 set %zu (r_max %.3f, damping %.2f): wrinkle height %.4f mm, RMS %.4f mm, mean |H| %.5f /mm\n", k,
+          c.r_max_relative, c.damping, figure8_height.back(), w.rms_smooth_distance_mm, w.mean_abs_curvature_per_mm);
+    }
+    run.facts()["figure8"] = sets;
+  }
   std::printf(
       "skin: %zu frames in skin.glb; mean moisture ratio %.2f at the end; mean linear colour (%.3f, %.3f, %.3f) -> "
       "(%.3f, %.3f, %.3f)\n",
@@ -372,6 +483,22 @@ int run_mummify(const MummifyArgs& a) {
     write_png(run.file("skin_turntable.png"), skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8,
                                                                    settings, kind + ", " + caption));
     for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
+    if (!figure8.empty()) {
+      std::vector<SheetCell> sets;
+      for (std::size_t k = 0; k < figure8.size(); ++k) {
+        SkinFrame f = skin_frames.back();
+        f.positions = figure8[k]->positions();
+        Scene scene;
+        const TriMesh mesh = skin_mesh_of_frame(skin.rest_skin(), f);
+        scene.add(mesh, material_from_name("vertex", mesh));
+        const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
+        char text[96];
+        std::snprintf(text, sizeof text, "(%.3f, %.2f): %.3f mm", c.r_max_relative, c.damping, figure8_height[k]);
+        sets.push_back({render_view(std::move(scene), settings, to_string(views.outside), views.axes), text});
+      }
+      write_png(run.file("figure8.png"), make_sheet(sets, 3, kind + ", " + caption + ": Figure 8 (r_max, damping)"));
+      run.add_output("figure8.png");
+    }
     run.timings().add("pictures", picture_watch.seconds());
   }
   run.write_record();
@@ -408,6 +535,12 @@ const RegisterCommand mummify_command{
           ->check(CLI::Range(-1.0, 1000.0));
       sub->add_option("--map-size", a->map_size, "Texels per side of the baked skin colour maps (0: none)")
           ->check(CLI::Range(0, 8192));
+      sub->add_flag("--figure8", a->figure8,
+                    "Also step Figure 8's three wrinkle controls on the same volume; compare them in figure8.png and "
+                    "the run's facts");
+      sub->add_option("--wrinkle-set", a->wrinkle_set,
+                      "Figure 8's wrinkle controls: 0 (r_max 0.001, damping 0.5), 1 (0.002, 0.2), 2 (0.004, 0.08)")
+          ->check(CLI::Range(0, 2));
       sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(64, 4096));
       return [a]() { return run_mummify(*a); };
     }};

@@ -38,6 +38,38 @@ SkinShadingJob load_skin_job(const MummifyArgs& a, const JobNode& node, const Ve
   return skin;
 }
 
+/// The "skin" object's motion keys: the position-based skin (sections 8.1 and 8.2, eqs. 32 to 35).
+SkinMotionJob load_skin_motion_job(const MummifyArgs& a, const JobNode& node) {
+  SkinMotionJob motion;
+  motion.pbd = node.get<bool>("pbd", motion.pbd);
+  motion.substeps = static_cast<int>(node.get_integer("substeps", motion.substeps, 1, 1000));
+  SkinSettings& s = motion.settings;
+  s.iterations = static_cast<int>(node.get_integer("iterations", s.iterations, 1, 200));
+  s.bending_interval = static_cast<int>(node.get_integer("bending_interval", s.bending_interval, 1, 200));
+  s.skin_shrinkage = node.get_number("skin_shrinkage", s.skin_shrinkage, 0.0, 0.9);
+  const JobNode wrinkle = node.child("wrinkle");
+  const bool numbers = wrinkle.has("r_max_relative") || wrinkle.has("damping");
+  if (numbers && wrinkle.has("set"))
+    wrinkle.fail("set", "give either \"set\" (0, 1 or 2: Figure 8) or \"r_max_relative\" and \"damping\", not both");
+  if (!numbers) {
+    motion.wrinkle_set = static_cast<int>(wrinkle.get_integer("set", motion.wrinkle_set, 0, 2));
+  } else {
+    motion.wrinkle_set = -1;
+    const WrinkleControls base = WrinkleControls::figure8(1);
+    s.wrinkle.r_max_relative = wrinkle.get_number("r_max_relative", base.r_max_relative, 0.0, 0.1);
+    s.wrinkle.damping = wrinkle.get_number("damping", base.damping, 0.0, 1.0);
+  }
+  if (a.given("--wrinkle-set")) motion.wrinkle_set = a.wrinkle_set;  // the command line wins
+  if (motion.wrinkle_set >= 0) s.wrinkle = WrinkleControls::figure8(motion.wrinkle_set);
+  const JobNode slip = node.child("slippage");
+  s.slippage.initial_stiffness = slip.get_number("stiffness", s.slippage.initial_stiffness, 0.0, 1.0);
+  s.slippage.decrease_below = slip.get_number("decrease_below", s.slippage.decrease_below, 0.0, 1.0);
+  s.slippage.zero_below = slip.get_number("zero_below", s.slippage.zero_below, 0.0, 1.0);
+  if (s.slippage.zero_below > s.slippage.decrease_below)
+    slip.fail("zero_below", "must not exceed decrease_below (tau_n <= tau_d, eq. 35)");
+  return motion;
+}
+
 }  // namespace
 
 MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
@@ -74,6 +106,8 @@ MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
   job.settings.deform = root.get<bool>("deform", true);
   job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
   job.skin = load_skin_job(a, root.child("skin"), e.up);
+  job.skin_motion = load_skin_motion_job(a, root.child("skin"));
+  job.figure8 = a.given("--figure8") ? a.figure8 : root.child("skin").get<bool>("figure8", a.figure8);
   return job;
 }
 

@@ -8,7 +8,10 @@
 ///    "tissue": {"initial_water_percent", "diffusivity_m2_per_s", "diffusivity_drying_exponent",
 ///               "shrinkage_efficiency", "skin_permeance_m_per_s"},
 ///    "skin": {"gravity", "contact_distance_mm", "map_resolution", "blood_fill", "residual_fill", "transition_mm",
-///             "contact_capacity", "oxygen", "drying_boost", "oxygen_decay_hours"}}
+///             "contact_capacity", "oxygen", "drying_boost", "oxygen_decay_hours",
+///             "pbd", "figure8", "substeps", "iterations", "bending_interval", "skin_shrinkage",
+///             "wrinkle": {"set": 0|1|2} or {"r_max_relative", "damping"},
+///             "slippage": {"stiffness", "decrease_below", "zero_below"}}}
 
 #include <CLI/CLI.hpp>
 
@@ -18,6 +21,7 @@
 #include "core/job.hpp"
 #include "desiccation/desiccation_sim.hpp"
 #include "mummify_skin.hpp"
+#include "mummify_skin_motion.hpp"
 #include "server/job_manager.hpp"
 
 namespace forensim::cli {
@@ -27,9 +31,10 @@ struct MummifyArgs {
   std::string job, phantom = "arm", size = "small", model, out = "out/mummify";
   double days = 21.0, step_hours = 12.0, temperature = 35.0, humidity = 30.0, wind = 1.0;
   int frames = 6, picture_size = 480, map_size = 512;
+  int wrinkle_set = 1;          ///< --wrinkle-set: Figure 8's wrinkle controls (0, 1, 2)
   std::vector<double> gravity;  ///< --gravity x y z (empty: the job's, or down)
   double contact_mm = 3.0;
-  bool resume = false, no_pictures = false;
+  bool resume = false, no_pictures = false, figure8 = false;
   CLI::App* sub = nullptr;  ///< null: nothing was given on a command line (the server)
   bool given(const std::string& option) const { return sub != nullptr && sub->get_option(option)->count() > 0; }
 };
@@ -41,7 +46,9 @@ struct MummifyJob {
   int frames = 0;
   long long deform_every = 4;  ///< quasi-static shape solved every this many steps (and at frames)
   DesiccationSettings settings;
-  SkinShadingJob skin;  ///< the "skin" object: livor mortis start state and shading
+  SkinShadingJob skin;        ///< the "skin" object: livor mortis start state and shading
+  SkinMotionJob skin_motion;  ///< the "skin" object: the position-based skin (sections 8.1, 8.2)
+  bool figure8 = false;       ///< "skin"/"figure8": also run Figure 8's three wrinkle controls, for comparison
 };
 
 /// Reads a mummify job from `root` (a job file's root, or the "job" object of a server request). Throws

@@ -58,8 +58,6 @@ std::vector<Vec3> skin_rest_offsets(const BodyModel& body) {
 
 std::vector<Vec3> skin_positions_for_frame(const BodyModel& body, const std::vector<Vec3>& rest_offsets,
                                            const std::vector<Vec3>& node_positions) {
-  // Until the position-based skin step (src/pbd) drives the skin, it follows the volume through its tracking
-  // connections: replace this body with the PBD step's positions for the frame.
   std::vector<Vec3> positions = tracking_points(body.tracking, node_positions);
   require_input(
       rest_offsets.size() == positions.size(), "skin", "rest offsets",
@@ -71,17 +69,19 @@ std::vector<Vec3> skin_positions_for_frame(const BodyModel& body, const std::vec
 MummifySkin::MummifySkin(const BodyModel& body, double initial_moisture, const SkinShadingJob& job)
     : m_body(body),
       m_initial_moisture(initial_moisture),
-      m_rest_offsets(skin_rest_offsets(body)),
       m_shader(job.shading),
       m_livor(start_state(body.skin, job)),
       m_layers(uniform_skin_layers(body.skin.vertex_count())) {
   if (body.skin.has_uvs() && job.map_resolution > 0) m_baker.emplace(body.skin, job.map_resolution);
 }
 
-SkinFrame MummifySkin::frame(const DesiccationState& state) const {
+SkinFrame MummifySkin::frame(const DesiccationState& state, const std::vector<Vec3>& positions) const {
+  require_input(
+      positions.size() == m_body.skin.vertex_count(), "skin frame", "positions",
+      std::to_string(positions.size()) + " for " + std::to_string(m_body.skin.vertex_count()) + " skin vertices");
   SkinFrame f;
   f.day = state.time_s / 86400.0;
-  f.positions = skin_positions_for_frame(m_body, m_rest_offsets, state.positions);
+  f.positions = positions;
   skin_moisture_ratio(m_body.tracking.face_nodes, m_body.tracking.weights, state.node_moisture, m_initial_moisture,
                       f.moisture);
   m_shader.shade(m_layers, m_livor, f.moisture, state.time_s / 3600.0, f.colours);

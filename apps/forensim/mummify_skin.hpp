@@ -45,9 +45,8 @@ std::vector<Vec3> skin_rest_offsets(const BodyModel& body);
 
 /// Skin vertex positions (#S, mm) for the volume's current node positions (#N, mm): each skin vertex is its
 /// tracking point interpolated on the current nodes plus its rest offset, so the skin follows the deforming
-/// volume rigidly. This is the one place where the skin's shape per frame is decided: the position-based
-/// skin step (stretch, bending, collision and tracking constraints, eqs. 32 to 35) replaces this body with a
-/// call that advances its own skin state to the frame.
+/// volume rigidly (the skin of a run with "pbd": false; the position-based skin of mummify_skin_motion.hpp is
+/// the default).
 std::vector<Vec3> skin_positions_for_frame(const BodyModel& body, const std::vector<Vec3>& rest_offsets,
                                            const std::vector<Vec3>& node_positions);
 
@@ -58,8 +57,9 @@ class MummifySkin {
   /// `initial_moisture`: phi_0 of the flesh (kg/kg dry basis). Throws InputError for bad settings.
   MummifySkin(const BodyModel& body, double initial_moisture, const SkinShadingJob& job);
 
-  /// Positions, moisture ratios and colours of the skin in `state`.
-  SkinFrame frame(const DesiccationState& state) const;
+  /// The skin frame of `state` with the skin at `positions` (#S, mm; MummifySkinMotion::positions()): the
+  /// moisture ratios at the tracking points and the colours. Throws InputError for a wrong #S.
+  SkinFrame frame(const DesiccationState& state, const std::vector<Vec3>& positions) const;
   /// Writes skin/frame_NNNN.vtu (float64, with the fields "colour", "moisture_ratio" and the livor fields) and,
   /// when the skin has UVs, skin/colour_NNNN.png; returns the .vtu's path relative to the run folder.
   std::string write_frame(const std::filesystem::path& run_folder, const SkinFrame& frame, int index) const;
@@ -71,7 +71,6 @@ class MummifySkin {
  private:
   const BodyModel& m_body;
   double m_initial_moisture = 1.0;
-  std::vector<Vec3> m_rest_offsets;
   SkinShader m_shader;
   LivorState m_livor;
   SkinLayers m_layers;

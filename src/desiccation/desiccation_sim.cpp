@@ -281,7 +281,7 @@ T get(const std::string& in, std::size_t& offset) {
 }
 }  // namespace
 
-void write_desiccation_checkpoint(const std::filesystem::path& path, const DesiccationState& state) {
+std::string desiccation_checkpoint_bytes(const DesiccationState& state) {
   const std::size_t n = state.node_moisture.size();
   std::string out;
   out.reserve(checkpoint_header + n * 7 * sizeof(double));
@@ -298,12 +298,20 @@ void write_desiccation_checkpoint(const std::filesystem::path& path, const Desic
       for (int k = 0; k < 3; ++k) put<double>(out, p[k]);
     }
   }
-  write_file_atomic(path, out);
+  return out;
+}
+
+void write_desiccation_checkpoint(const std::filesystem::path& path, const DesiccationState& state) {
+  write_file_atomic(path, desiccation_checkpoint_bytes(state));
 }
 
 DesiccationState read_desiccation_checkpoint(const std::filesystem::path& path, std::size_t vertex_count) {
-  const std::string source = path.string();
-  const std::string in = read_file(path, checkpoint_header + (vertex_count * 7 + 1) * sizeof(double));
+  return desiccation_state_from_bytes(read_file(path, checkpoint_header + (vertex_count * 7 + 1) * sizeof(double)),
+                                      vertex_count, path.string());
+}
+
+DesiccationState desiccation_state_from_bytes(const std::string& in, std::size_t vertex_count,
+                                              const std::string& source) {
   require_input(in.size() >= checkpoint_header, source, "byte 0", "too short for a desiccation checkpoint");
   require_input(std::memcmp(in.data(), checkpoint_magic, 8) == 0, source, "byte 0", "not a desiccation checkpoint");
   std::size_t offset = 8;

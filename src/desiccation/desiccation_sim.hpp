@@ -124,6 +124,13 @@ class DesiccationSolver {
   std::unique_ptr<Impl> m_impl;
 };
 
+/// The binary checkpoint of `state` (version 1: magic, time, step count, evaporated water, #V, then the node
+/// moisture, positions and velocities as float64), so a resumed run continues bit-identically.
+std::string desiccation_checkpoint_bytes(const DesiccationState& state);
+/// Reads back desiccation_checkpoint_bytes(); `vertex_count` is the model's #V, `source` names the bytes in
+/// errors. Throws InputError for malformed or mismatched bytes (naming the byte).
+DesiccationState desiccation_state_from_bytes(const std::string& bytes, std::size_t vertex_count,
+                                              const std::string& source);
 /// Writes `state` to a binary checkpoint file (atomically). Throws IoError.
 void write_desiccation_checkpoint(const std::filesystem::path& path, const DesiccationState& state);
 /// Reads a checkpoint; `vertex_count` is the model's #V. Throws InputError for a malformed or mismatched

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "pbd/bending_constraint.hpp"
 
@@ -77,6 +78,20 @@ WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::ve
   }
   out.mean_abs_curvature_per_mm = area > 0.0 ? curvature / (2.0 * area) : 0.0;
   return out;
+}
+
+double wrinkle_height_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                         const std::vector<Tri>& triangles, int smoothing_steps,
+                         const std::vector<std::uint8_t>& vertex_mask) {
+  require_input(reference.size() == positions.size(), "wrinkle height", "reference",
+                "has " + std::to_string(reference.size()) + " vertices for " + std::to_string(positions.size()));
+  TriMesh glued;
+  glued.positions = reference;
+  glued.triangles = triangles;
+  const std::vector<Vec3> normals = vertex_normals(glued);
+  std::vector<Vec3> lift(positions.size());
+  for (std::size_t i = 0; i < lift.size(); ++i) lift[i] = (positions[i] - reference[i]).dot(normals[i]) * normals[i];
+  return wrinkle_measure(lift, triangles, smoothing_steps, vertex_mask).rms_smooth_distance_mm;
 }
 
 }  // namespace forensim

@@ -4,7 +4,10 @@
 /// - the RMS distance of the skin from a smoothed copy of itself (Taubin's lambda|mu smoothing with the uniform
 ///   Laplacian, which removes fine folds without shrinking the shape as plain Laplacian smoothing does), in mm;
 /// - the mean absolute mean curvature, sum_e |theta_e| l_e / (2 A) over the edges (theta_e the dihedral angle,
-///   l_e the edge length, A the area), in 1/mm: 1/r for a sphere of radius r, larger when the skin folds.
+///   l_e the edge length, A the area), in 1/mm: 1/r for a sphere of radius r, larger when the skin folds;
+/// - the wrinkle height against a reference skin without wrinkles (the skin glued to the shrunk volume: each vertex
+///   at its tracking point plus its rest offset): the RMS of the fine part of the skin's lift-off from it, so the
+///   shape of the shrunk body itself, the same whatever the wrinkle controls, does not count.
 
 #include <cstdint>
 #include <vector>
@@ -24,5 +27,14 @@ struct WrinkleMeasure {
 /// mask of the wrong size.
 WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
                                int smoothing_steps = 10, const std::vector<std::uint8_t>& vertex_mask = {});
+
+/// Wrinkle height of the skin at `positions` (#S) over `reference` (#S, same triangles), in mm: the skin's
+/// displacement along the reference's vertex normals, d_i = ((x_i - g_i) . n_i) n_i, less its Taubin-smoothed copy
+/// (`smoothing_steps` as above; smoothing is linear, so this is wrinkle_measure(d).rms_smooth_distance_mm): the
+/// skin sliding along the surface does not count, nor does a smooth lift of a whole region. Throws InputError for
+/// mismatched sizes or a bad mask.
+double wrinkle_height_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                         const std::vector<Tri>& triangles, int smoothing_steps = 10,
+                         const std::vector<std::uint8_t>& vertex_mask = {});
 
 }  // namespace forensim

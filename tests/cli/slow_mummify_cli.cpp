@@ -36,14 +36,15 @@ double luminance(const Vec3& c) {
 }  // namespace
 
 // End to end on the small arm phantom: the series, curves, plots, renders and run record are written; water
-// is conserved; a run resumed from its checkpoint (each half on another thread count) ends in the same state
-// as one run straight through, and writes the same animated skin.
+// is conserved; the position-based skin moved off the volume it was glued to; a run resumed from its
+// checkpoint (the desiccation and the skin state, each half on another thread count) ends in the same state
+// as one run straight through, and writes the same skin frames and animated skin; a run on 1 thread writes the
+// same as one on 2.
 TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   const auto dir = test::scratch_dir("mummify_cli_run");
-  std::filesystem::remove_all(dir / "straight");
-  std::filesystem::remove_all(dir / "resumed");
+  for (const char* run : {"straight", "resumed", "one_thread", "glued"}) std::filesystem::remove_all(dir / run);
   const std::string common = " --days 6 --frames 6 --step-hours 12 --picture-size 96";
-  auto r = run_cli("mummify -o " + (dir / "straight").string() + common);
+  auto r = run_cli("--threads 2 mummify -o " + (dir / "straight").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"desiccation.pvd", "volume/frame_0000.vtu", "volume/frame_0006.vtu", "curves.csv", "curves.png",
                         "curves_parts.png", "moisture_outside.png", "moisture_cut.png", "shrinkage.png",
@@ -56,6 +57,8 @@ TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   EXPECT_LT(record["facts"]["mass_percent"].get<double>(), 100.0);
   EXPECT_NEAR(record["facts"]["water_balance_error_kg"].get<double>(), 0.0, 1e-8);
   EXPECT_EQ(record["facts"]["skin_frames"], 7);
+  EXPECT_EQ(record["facts"]["skin_pbd"], true);
+  EXPECT_GT(record["facts"]["skin_steps"].get<long long>(), 0);
 
   // The GLB: one node per frame (start + 6), each but the last with one morph target to the next frame, and one
   // clip "drying" of 6 weight channels (0 -> 1 while the frame is shown) and 7 STEP scale channels.
@@ -90,7 +93,7 @@ TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   EXPECT_LT(luminance(colours.back()), luminance(colours.front()));  // drying skin darkens
 
   // First half (3 days), then resume from its checkpoint to day 6.
-  // The halves run on 1 and 2 worker threads (the straight run on all cores): output must not depend on it.
+  // The halves run on 1 and 2 worker threads (the straight run on 2): output must not depend on it.
   r = run_cli("--threads 1 mummify -o " + (dir / "resumed").string() +
               " --days 3 --frames 3 --step-hours 12 --no-pictures");
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -101,7 +104,35 @@ TEST(SlowMummifyCli, RunsWritesOutputsAndResumes) {
   // The same output frames (so the same steps with a shape solve): the final state is bit-identical.
   EXPECT_EQ(read_file(dir / "resumed" / "checkpoint.bin"), read_file(dir / "straight" / "checkpoint.bin"));
   EXPECT_EQ(read_file(dir / "resumed" / "skin.glb"), read_file(dir / "straight" / "skin.glb"));
-  EXPECT_EQ(read_file(dir / "resumed" / "skin/frame_0006.vtu"), read_file(dir / "straight" / "skin/frame_0006.vtu"));
+  // The skin's positions at every frame after the resumption come from the restored skin state.
+  for (const char* f : {"skin/frame_0004.vtu", "skin/frame_0005.vtu", "skin/frame_0006.vtu"})
+    EXPECT_EQ(read_file(dir / "resumed" / f), read_file(dir / "straight" / f)) << f;
+
+  // The whole run on one worker thread writes the same skin and state as on two.
+  r = run_cli("--threads 1 mummify -o " + (dir / "one_thread").string() +
+              " --days 6 --frames 6 --step-hours 12 "
+              "--no-pictures");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_file(dir / "one_thread" / "checkpoint.bin"), read_file(dir / "straight" / "checkpoint.bin"));
+  for (int k = 0; k <= 6; ++k) {
+    const std::string f = "skin/frame_000" + std::to_string(k) + ".vtu";
+    EXPECT_EQ(read_file(dir / "one_thread" / f), read_file(dir / "straight" / f)) << f;
+  }
+
+  // With "pbd": false the skin is glued to the volume; the position-based skin is not (it lifts off and wrinkles),
+  // and resuming a glued run's checkpoint with the position-based skin is refused.
+  write_file_atomic(dir / "glued.json", R"({"skin": {"pbd": false}})");
+  r = run_cli("mummify " + (dir / "glued.json").string() + " -o " + (dir / "glued").string() +
+              " --days 6 --frames 6 --step-hours 12 --no-pictures");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto glued = nlohmann::json::parse(read_file(dir / "glued" / "run.json"))["facts"];
+  EXPECT_EQ(glued["skin_pbd"], false);
+  EXPECT_EQ(glued["skin_wrinkle_height_mm"].get<double>(), 0.0);
+  EXPECT_GT(record["facts"]["skin_wrinkle_height_mm"].get<double>(), 0.0);
+  EXPECT_NE(read_file(dir / "glued" / "skin/frame_0006.vtu"), read_file(dir / "straight" / "skin/frame_0006.vtu"));
+  r = run_cli("mummify -o " + (dir / "glued").string() + " --days 8 --frames 8 --step-hours 12 --no-pictures --resume");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("position-based"), std::string::npos) << r.output;
 }
 
 // Two months of drying: the skin's frames in the GLB get darker and browner (less blue against red) from the

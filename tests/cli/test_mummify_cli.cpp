@@ -75,3 +75,35 @@ TEST(MummifyCli, RejectsBadSkinShadingKeys) {
   for (const char* flag : {"--gravity", "--contact-mm", "--map-size"})
     EXPECT_NE(help.find(flag), std::string::npos) << flag;
 }
+
+// The position-based skin's settings ("skin": "pbd", "wrinkle", "iterations", "substeps", "slippage", ...) are
+// checked by the same loader: job errors naming the key, before anything is built or written.
+TEST(MummifyCli, RejectsBadSkinMotionKeys) {
+  const auto dir = test::scratch_dir("mummify_cli_skin_motion_jobs");
+  const auto out = dir / "out";
+  std::filesystem::remove_all(out);
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"skin": {"pbd": "yes"}})", "pbd"},
+      {R"({"skin": {"wrinkle": {"set": 3}}})", "set"},
+      {R"({"skin": {"wrinkle": {"set": 1, "damping": 0.3}}})", "set"},
+      {R"({"skin": {"wrinkle": {"sett": 1}}})", "sett"},
+      {R"({"skin": {"wrinkle": {"r_max_relative": -0.001}}})", "r_max_relative"},
+      {R"({"skin": {"wrinkle": {"damping": 1.5}}})", "damping"},
+      {R"({"skin": {"wrinkle": 2}})", "wrinkle"},
+      {R"({"skin": {"iterations": 0}})", "iterations"},
+      {R"({"skin": {"substeps": 0}})", "substeps"},
+      {R"({"skin": {"bending_interval": 0}})", "bending_interval"},
+      {R"({"skin": {"skin_shrinkage": 0.95}})", "skin_shrinkage"},
+      {R"({"skin": {"slippage": {"decrease_below": 0.1, "zero_below": 0.2}}})", "zero_below"},
+      {R"({"skin": {"slippage": {"stiffness": 2}}})", "stiffness"},
+  };
+  for (const auto& [json, key] : cases) {
+    write_file_atomic(dir / "skin.json", json);
+    const auto r = run_cli("mummify " + (dir / "skin.json").string() + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 4) << json << "\n" << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << json << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out / "run.json")) << json;
+  }
+  EXPECT_EQ(run_cli("mummify --wrinkle-set 3 -o " + out.string()).exit_code, 2);
+  EXPECT_NE(run_cli("mummify --help").output.find("--wrinkle-set"), std::string::npos);
+}

@@ -128,18 +128,8 @@ std::vector<Vec3> glued_skin(const Arm& a, const std::vector<Vec3>& nodes) {
   return glued;
 }
 
-/// RMS of the fine part of the skin's lift-off from the glued skin: the displacement's component along the glued
-/// skin's normal, d_i = ((x_i - g_i) . n_i) n_i, less its Taubin-smoothed copy (smoothing is linear in the
-/// positions, so wrinkle_measure() of the field d is the RMS of d - smooth(d)). The skin's sliding along the
-/// surface does not count, nor does a smooth lift of a whole region.
-double wrinkle_height_mm(const Arm& a, const std::vector<Vec3>& skin, const std::vector<Vec3>& glued) {
-  TriMesh g;
-  g.positions = glued;
-  g.triangles = a.body.skin.triangles;
-  const std::vector<Vec3> normals = vertex_normals(g);
-  std::vector<Vec3> d(skin.size());
-  for (std::size_t i = 0; i < d.size(); ++i) d[i] = (skin[i] - glued[i]).dot(normals[i]) * normals[i];
-  return wrinkle_measure(d, a.body.skin.triangles).rms_smooth_distance_mm;
+double wrinkle_height(const Arm& a, const std::vector<Vec3>& skin, const std::vector<Vec3>& glued) {
+  return wrinkle_height_mm(skin, glued, a.body.skin.triangles);
 }
 
 struct Result {
@@ -164,7 +154,7 @@ Result run(const Arm& a, const WrinkleControls& controls, SkinSettings settings 
   }
   Result r;
   r.wrinkles = wrinkle_measure(state.positions, model.triangles);
-  r.wrinkle_height_mm = wrinkle_height_mm(a, state.positions, glued_skin(a, shrunk_nodes(a, 1.0)));
+  r.wrinkle_height_mm = wrinkle_height(a, state.positions, glued_skin(a, shrunk_nodes(a, 1.0)));
   r.positions = state.positions;
   r.bone_distance_mm = mean_bone_distance(a, state.positions);
   r.flipped = flipped_triangles(model.triangles, model.vertex_rest_position, state.positions);
