@@ -32,21 +32,6 @@ struct PaperFigures {
   double dehydration_s, deformation_s;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// Median and minimum of `samples` (not empty).
-BenchTiming summarise(std::vector<double> samples) {
-  std::sort(samples.begin(), samples.end());
-  const std::size_t m = samples.size();
-  return {m % 2 == 1 ? samples[m / 2] : 0.5 * (samples[m / 2 - 1] + samples[m / 2]), samples.front()};
-}
-
-std::string mib(std::size_t bytes) {
-  return std::to_string(bytes / (1024 * 1024)) + " MiB";
-}
-
 void bench_phantom(const std::string& phantom, const BenchOptions& options, const PaperFigures& paper,
                    std::vector<BenchRow>& rows) {
   const std::string label = phantom + " " + options.size;
@@ -82,7 +67,7 @@ void bench_phantom(const std::string& phantom, const BenchOptions& options, cons
     diffusion_iterations = report.diffusion_iterations;
     if (r > 0) dehydration.push_back(report.seconds_diffusion);  // the first run warms caches
   }
-  BenchTiming t = summarise(dehydration);
+  BenchTiming t = summarise_samples(dehydration);
   rows.push_back({label + ": dehydration step (1 h)", t.median_s, t.min_s, paper.dehydration_s, ref,
                   paper.dehydration_s / 30.0, std::to_string(diffusion_iterations) + " CG iterations; " + counts});
 
@@ -97,7 +82,7 @@ void bench_phantom(const std::string& phantom, const BenchOptions& options, cons
     last = solver.step(s, 12 * hour, true);
     update.push_back(last.seconds_deformation);
   }
-  t = summarise(update);
+  t = summarise_samples(update);
   rows.push_back({label + ": deformation, shape update (2 days)", t.median_s, t.min_s, paper.deformation_s, ref,
                   paper.deformation_s / 30.0,
                   std::to_string(last.deformation_iterations) + " Newton, " +
@@ -116,7 +101,7 @@ void bench_phantom(const std::string& phantom, const BenchOptions& options, cons
     last = dynamic_solver.step(s, 12 * hour, true);
     dynamic.push_back(last.seconds_deformation);
   }
-  t = summarise(dynamic);
+  t = summarise_samples(dynamic);
   rows.push_back({label + ": deformation, dynamic step (12 h)", t.median_s, t.min_s, paper.deformation_s, ref,
                   paper.deformation_s / 30.0, std::to_string(last.deformation_cg_iterations) + " CG iterations"});
 
@@ -128,13 +113,14 @@ void bench_phantom(const std::string& phantom, const BenchOptions& options, cons
     last = solver.step(s, 12 * hour, true);
     from_rest.push_back(last.seconds_deformation);
   }
-  t = summarise(from_rest);
+  t = summarise_samples(from_rest);
   rows.push_back({label + ": deformation, from rest", t.median_s, t.min_s, -1.0, "", -1.0,
                   std::to_string(last.deformation_iterations) + " Newton, " +
                       std::to_string(last.deformation_cg_iterations) +
                       " CG iterations (day-3 solve: " + std::to_string(cold.deformation_iterations) + " Newton)"});
-  rows.push_back({label + ": set-up (once per run)", seconds_setup, seconds_setup, -1.0, "", -1.0,
-                  "pattern, rest-stiffness factorisation, first shape; peak memory so far " + mib(peak_rss_bytes())});
+  rows.push_back(
+      {label + ": set-up (once per run)", seconds_setup, seconds_setup, -1.0, "", -1.0,
+       "pattern, rest-stiffness factorisation, first shape; peak memory so far " + format_mib(peak_rss_bytes())});
 }
 
 const RegisterBench desiccation_bench{

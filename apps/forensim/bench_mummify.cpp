@@ -36,20 +36,6 @@ struct PaperFrame {
   double frame_s, dehydration_s, deformation_s, skin_s;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-BenchTiming summarise(std::vector<double> samples) {
-  std::sort(samples.begin(), samples.end());
-  const std::size_t m = samples.size();
-  return {m % 2 == 1 ? samples[m / 2] : 0.5 * (samples[m / 2 - 1] + samples[m / 2]), samples.front()};
-}
-
-std::string mib(std::size_t bytes) {
-  return std::to_string(bytes / (1024 * 1024)) + " MiB";
-}
-
 void bench_phantom(const std::string& phantom, const BenchOptions& options, const PaperFrame& paper,
                    std::vector<BenchRow>& rows) {
   const std::string label = phantom + " " + options.size;
@@ -124,32 +110,33 @@ void bench_phantom(const std::string& phantom, const BenchOptions& options, cons
     motion.restore(skin_bytes, state, "bench");
     substeps_s.push_back(motion.advance(state.positions, s).seconds);
   }
-  BenchTiming t = summarise(moisture_s);
+  BenchTiming t = summarise_samples(moisture_s);
   rows.push_back({label + ": moisture step (12 h)", t.median_s, t.min_s, paper_or_none(paper.dehydration_s), ref,
                   goal_or_none(paper.dehydration_s), std::to_string(last.diffusion_iterations) + " CG iterations"});
-  t = summarise(volume_s);
+  t = summarise_samples(volume_s);
   rows.push_back({label + ": volume (shape) step", t.median_s, t.min_s, paper_or_none(paper.deformation_s), ref,
                   goal_or_none(paper.deformation_s),
                   std::to_string(last.deformation_iterations) + " Newton, " +
                       std::to_string(last.deformation_cg_iterations) + " CG iterations"});
-  t = summarise(skin_s);
+  t = summarise_samples(skin_s);
   const SkinModel& skin_model = single.model();
   rows.push_back({label + ": skin step", t.median_s, t.min_s, paper_or_none(paper.skin_s), ref,
                   goal_or_none(paper.skin_s),
                   std::to_string(skin_vertices) + " vertices, " + std::to_string(skin_model.settings.iterations) +
                       " iterations, " + std::to_string(skin_report.collisions) + " collisions, " +
                       std::to_string(skin_report.pulled) + " pulls"});
-  t = summarise(shading_s);
+  t = summarise_samples(shading_s);
   rows.push_back({label + ": skin shading", t.median_s, t.min_s, -1.0, "", -1.0,
                   "moisture ratio and two-layer colour per vertex"});
-  t = summarise(frame_s);
+  t = summarise_samples(frame_s);
   rows.push_back({label + ": per frame (the four above)", t.median_s, t.min_s, paper_or_none(paper.frame_s), ref,
                   goal_or_none(paper.frame_s), "paper's frame also includes its skin rendering"});
-  t = summarise(substeps_s);
+  t = summarise_samples(substeps_s);
   rows.push_back({label + ": skin motion per shape solve", t.median_s, t.min_s, -1.0, "", -1.0,
                   std::to_string(motion_job.substeps) + " skin steps, as forensim mummify runs them"});
-  rows.push_back({label + ": set-up (once per run)", seconds_setup, seconds_setup, -1.0, "", -1.0,
-                  "skin model and colouring, livor start state, solvers; peak memory so far " + mib(peak_rss_bytes())});
+  rows.push_back(
+      {label + ": set-up (once per run)", seconds_setup, seconds_setup, -1.0, "", -1.0,
+       "skin model and colouring, livor start state, solvers; peak memory so far " + format_mib(peak_rss_bytes())});
 }
 
 const RegisterBench mummify_bench{

@@ -25,12 +25,23 @@ BenchTiming time_repeated(int repetitions, const std::function<void()>& fn) {
   for (int i = 0; i < n; ++i) {
     const auto start = std::chrono::steady_clock::now();
     fn();
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    seconds.push_back(seconds_since(start));
   }
-  std::sort(seconds.begin(), seconds.end());
-  const std::size_t m = seconds.size();
-  const double median = m % 2 == 1 ? seconds[m / 2] : 0.5 * (seconds[m / 2 - 1] + seconds[m / 2]);
-  return {median, seconds.front()};
+  return summarise_samples(std::move(seconds));
+}
+
+BenchTiming summarise_samples(std::vector<double> samples) {
+  std::sort(samples.begin(), samples.end());
+  const std::size_t m = samples.size();
+  return {m % 2 == 1 ? samples[m / 2] : 0.5 * (samples[m / 2 - 1] + samples[m / 2]), samples.front()};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string format_mib(std::size_t bytes) {
+  return std::to_string(bytes / (1024 * 1024)) + " MiB";
 }
 
 std::size_t peak_rss_bytes() {

@@ -4,6 +4,7 @@
 /// own bench_<system>.cpp in this folder (static registration, like the subcommands); the Google Benchmark
 /// programs in bench/ measure the same kernels in finer detail.
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -47,6 +48,12 @@ struct BenchTiming {
   double min_s = 0.0;
 };
 BenchTiming time_repeated(int repetitions, const std::function<void()>& fn);
+/// Median and minimum of `samples` (seconds; not empty).
+BenchTiming summarise_samples(std::vector<double> samples);
+/// Seconds from `start` to now.
+double seconds_since(std::chrono::steady_clock::time_point start);
+/// "N MiB" for a byte count.
+std::string format_mib(std::size_t bytes);
 
 /// Peak resident set size of this process so far, bytes (getrusage; 0 where unknown).
 std::size_t peak_rss_bytes();

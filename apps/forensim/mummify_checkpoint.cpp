@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/atomic_file.hpp"
+#include "core/byte_record.hpp"
 #include "core/error.hpp"
 
 namespace forensim::cli {
@@ -11,25 +12,20 @@ namespace {
 
 constexpr char magic[8] = {'F', 'S', 'M', 'U', 'M', 'M', 'Y', '1'};
 
-void put_section(std::string& out, const std::string& bytes) {
-  const auto n = static_cast<std::uint64_t>(bytes.size());
-  char size[sizeof n];
-  std::memcpy(size, &n, sizeof n);
-  out.append(size, sizeof n);
-  out += bytes;
+void put_section(std::string& out, const std::string& section) {
+  bytes::append(out, static_cast<std::uint64_t>(section.size()));
+  out += section;
 }
 
 std::string get_section(const std::string& in, std::size_t& offset, const std::string& source, const char* what) {
-  std::uint64_t n = 0;
-  require_input(in.size() - offset >= sizeof n, source, "byte " + std::to_string(offset),
+  require_input(in.size() - offset >= sizeof(std::uint64_t), source, "byte " + std::to_string(offset),
                 std::string("ends before the ") + what + " section");
-  std::memcpy(&n, in.data() + offset, sizeof n);
-  offset += sizeof n;
+  const auto n = bytes::read<std::uint64_t>(in, offset);
   require_input(n <= in.size() - offset, source, "byte " + std::to_string(offset),
                 std::string("the ") + what + " section runs past the end of the file");
-  std::string bytes = in.substr(offset, static_cast<std::size_t>(n));
+  std::string section = in.substr(offset, static_cast<std::size_t>(n));
   offset += static_cast<std::size_t>(n);
-  return bytes;
+  return section;
 }
 
 }  // namespace
@@ -37,10 +33,7 @@ std::string get_section(const std::string& in, std::size_t& offset, const std::s
 void write_mummify_checkpoint(const std::filesystem::path& path, const DesiccationState& state,
                               const std::vector<std::string>& skins) {
   std::string out(magic, 8);
-  const auto count = static_cast<std::uint64_t>(skins.size());
-  char bytes[sizeof count];
-  std::memcpy(bytes, &count, sizeof count);
-  out.append(bytes, sizeof count);
+  bytes::append(out, static_cast<std::uint64_t>(skins.size()));
   put_section(out, desiccation_checkpoint_bytes(state));
   for (const std::string& skin : skins) put_section(out, skin);
   write_file_atomic(path, out);
@@ -51,11 +44,10 @@ MummifyCheckpoint read_mummify_checkpoint(const std::filesystem::path& path, std
   const std::string in = read_file(path);
   require_input(in.size() >= 8 && std::memcmp(in.data(), magic, 8) == 0, source, "byte 0",
                 "not a forensim mummify checkpoint");
-  std::uint64_t count = 0;
   require_input(in.size() >= 16, source, "byte 8", "ends before the number of skins");
-  std::memcpy(&count, in.data() + 8, sizeof count);
+  std::size_t offset = 8;
+  const auto count = bytes::read<std::uint64_t>(in, offset);
   require_input(count <= 64, source, "byte 8", "implausible number of skins " + std::to_string(count));
-  std::size_t offset = 16;
   MummifyCheckpoint out;
   out.state = desiccation_state_from_bytes(get_section(in, offset, source, "desiccation"), vertex_count,
                                            source + " (desiccation)");

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/atomic_file.hpp"
+#include "core/byte_record.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "geometry/mesh_measures.hpp"
@@ -265,20 +266,6 @@ namespace {
 constexpr char checkpoint_magic[8] = {'F', 'S', 'D', 'E', 'S', 'I', 'C', '1'};
 constexpr std::size_t checkpoint_header = 8 + 4 + 8 + 8 + 8 + 8;
 
-template <typename T>
-void put(std::string& out, const T& value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
-}
-
-template <typename T>
-T get(const std::string& in, std::size_t& offset) {
-  T value;
-  std::memcpy(&value, in.data() + offset, sizeof(T));
-  offset += sizeof(T);
-  return value;
-}
 }  // namespace
 
 std::string desiccation_checkpoint_bytes(const DesiccationState& state) {
@@ -286,16 +273,16 @@ std::string desiccation_checkpoint_bytes(const DesiccationState& state) {
   std::string out;
   out.reserve(checkpoint_header + n * 7 * sizeof(double));
   out.append(checkpoint_magic, 8);
-  put<std::uint32_t>(out, 1);
-  put<double>(out, state.time_s);
-  put<std::int64_t>(out, state.step_count);
-  put<double>(out, state.evaporated_kg);
-  put<std::uint64_t>(out, n);
-  for (double x : state.node_moisture) put<double>(out, x);
+  bytes::append<std::uint32_t>(out, 1);
+  bytes::append<double>(out, state.time_s);
+  bytes::append<std::int64_t>(out, state.step_count);
+  bytes::append<double>(out, state.evaporated_kg);
+  bytes::append<std::uint64_t>(out, n);
+  for (double x : state.node_moisture) bytes::append<double>(out, x);
   for (const std::vector<Vec3>* field : {&state.positions, &state.velocities}) {
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 p = i < field->size() ? (*field)[i] : Vec3::Zero();
-      for (int k = 0; k < 3; ++k) put<double>(out, p[k]);
+      for (int k = 0; k < 3; ++k) bytes::append<double>(out, p[k]);
     }
   }
   return out;
@@ -315,13 +302,13 @@ DesiccationState desiccation_state_from_bytes(const std::string& in, std::size_t
   require_input(in.size() >= checkpoint_header, source, "byte 0", "too short for a desiccation checkpoint");
   require_input(std::memcmp(in.data(), checkpoint_magic, 8) == 0, source, "byte 0", "not a desiccation checkpoint");
   std::size_t offset = 8;
-  const auto version = get<std::uint32_t>(in, offset);
+  const auto version = bytes::read<std::uint32_t>(in, offset);
   require_input(version == 1, source, "byte 8", "unknown checkpoint version " + std::to_string(version));
   DesiccationState state;
-  state.time_s = get<double>(in, offset);
-  state.step_count = get<std::int64_t>(in, offset);
-  state.evaporated_kg = get<double>(in, offset);
-  const auto n = get<std::uint64_t>(in, offset);
+  state.time_s = bytes::read<double>(in, offset);
+  state.step_count = bytes::read<std::int64_t>(in, offset);
+  state.evaporated_kg = bytes::read<double>(in, offset);
+  const auto n = bytes::read<std::uint64_t>(in, offset);
   require_input(n == vertex_count, source, "byte 36",
                 "checkpoint has " + std::to_string(n) + " nodes, the model " + std::to_string(vertex_count));
   require_input(in.size() == checkpoint_header + n * 7 * sizeof(double), source, "byte " + std::to_string(in.size()),
@@ -329,12 +316,9 @@ DesiccationState desiccation_state_from_bytes(const std::string& in, std::size_t
   require_input(std::isfinite(state.time_s) && state.time_s >= 0.0 && state.step_count >= 0, source, "byte 12",
                 "bad time or step count");
   state.node_moisture.resize(n);
-  for (double& x : state.node_moisture) x = get<double>(in, offset);
-  for (std::vector<Vec3>* field : {&state.positions, &state.velocities}) {
-    field->resize(n);
-    for (Vec3& p : *field)
-      for (int k = 0; k < 3; ++k) p[k] = get<double>(in, offset);
-  }
+  for (double& x : state.node_moisture) x = bytes::read<double>(in, offset);
+  bytes::read_points(in, offset, n, state.positions);
+  bytes::read_points(in, offset, n, state.velocities);
   for (std::size_t i = 0; i < n; ++i)
     require_input(
         std::isfinite(state.node_moisture[i]) && state.positions[i].allFinite() && state.velocities[i].allFinite(),
