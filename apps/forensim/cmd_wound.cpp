@@ -14,6 +14,7 @@
 #include "core/job.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
+#include "geometry/bounding_box.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
 #include "mesh_io/gltf_writer.hpp"
@@ -288,6 +289,31 @@ int run_wound(const WoundArgs& a) {
     write_png(run.file("timeline_keys.png"), make_sheet(key_cells, std::min<int>(5, static_cast<int>(key_cells.size())),
                                                         "forensim wound: " + job.type + " key positions"));
     run.add_output("timeline_keys.png");
+    // The whole mesh, seen from the wound's side, at the key with the most relief (the scab): where on the
+    // body the wound sits, beside the close-ups.
+    {
+      std::size_t relief = keys.size() - 1;
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i].prefix.find("scab") != std::string::npos && keys[i].prefix.find("forming") == std::string::npos)
+          relief = i;
+      const BoundingBox box = bounding_box(mesh.positions);
+      const double size = (box.max - box.min).norm();
+      const double far = 1.1 * size / (2.0 * std::tan(15.0 * M_PI / 180.0));
+      const Camera overview = Camera::look_at(surface + normal * far, surface, up, 30.0);
+      Scene scene;
+      SurfaceMaterial material = SurfaceMaterial::skin();
+      material.colour_source = ColourSource::texture;
+      material.base_colour = Vec3f(1, 1, 1);
+      material.base_texture = std::make_shared<Image>(keys[relief].maps.color);
+      material.normal_map = std::make_shared<Image>(normal_from_height(keys[relief].maps.height_mm, tpm));
+      scene.add(displaced(mesh, keys[relief].maps.height_mm), material, "skin");
+      scene.camera = overview;
+      const Renderer renderer(scene);
+      write_png(run.file("overview.png"),
+                make_sheet({{renderer.render(overview, settings), keys[relief].caption + ", whole mesh"}}, 1,
+                           "forensim wound: " + job.type));
+      run.add_output("overview.png");
+    }
     if (!shots.empty()) {
       const auto time_cells = render_shots(shots);
       write_png(run.file("timeline_times.png"),
@@ -320,7 +346,8 @@ const RegisterCommand wound_command{
           ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--builtin", a->builtin, "Built-in mesh without --mesh: forearm-uv or cylinder")
           ->check(CLI::IsMember({"forearm-uv", "cylinder"}));
-      sub->add_option("--strokes", a->strokes, "Wound job JSON: strokes (3D or UV points), shape, distance, keys");
+      sub->add_option("--strokes", a->strokes,
+                      "Wound job JSON: strokes (3D, UV or screen points), shape, distance, keys");
       sub->add_option("--type", a->type, "Wound type (overrides the job's)")
           ->check(CLI::IsMember({"abrasion", "bruise"}));
       sub->add_option("--distance", a->distance, "Distances on the surface in 3D (default) or in UV space")

@@ -3,8 +3,10 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "geometry/bounding_box.hpp"
 #include "wound/bruise.hpp"
 #include "wound/duration.hpp"
+#include "wound/screen_stroke.hpp"
 
 namespace forensim {
 
@@ -24,6 +26,44 @@ std::optional<Vec3> surface_point_at_uv(const TriMesh& mesh, const Vec2& uv) {
   }
   return std::nullopt;
 }
+
+namespace {
+
+Vec3 read_vec3(const JobNode& node, const std::string& key) {
+  const auto v = node.require<std::vector<double>>(key);
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+    node.fail(key, "expected three finite numbers");
+  }
+  return Vec3(v[0], v[1], v[2]);
+}
+
+// The camera of a screen stroke: a named view framed on the mesh ({"view", "axes"}) or an explicit one
+// ({"eye", "target", "up", "fov_deg"}), and the image size its pixels refer to.
+StrokeScreen read_stroke_screen(const JobNode& node, const TriMesh& mesh) {
+  StrokeScreen screen;
+  screen.width = static_cast<int>(node.get_integer("width", 1024, 1, 16384));
+  screen.height = static_cast<int>(node.get_integer("height", 1024, 1, 16384));
+  const double fov = node.get_number("fov_deg", 30.0, 1.0, 170.0);
+  if (node.has("eye")) {
+    try {
+      screen.camera = Camera::look_at(read_vec3(node, "eye"), read_vec3(node, "target"), read_vec3(node, "up"), fov);
+    } catch (const InputError& err) {
+      node.fail("eye", err.problem());
+    }
+    return screen;
+  }
+  std::vector<std::string> views = view_names();
+  const std::string view = node.get_choice("view", "front", views);
+  FramingOptions framing;
+  framing.vertical_fov_deg = fov;
+  // "lps": CT and phantom meshes (+Z up, -Y front); "y_up": glTF and most scans (+Y up, +Z front).
+  if (node.get_choice("axes", "lps", {"lps", "y_up"}) == "y_up") framing.axes = {Vec3::UnitY(), Vec3::UnitZ()};
+  screen.camera = frame_view(bounding_box(mesh.positions), view_from_name(view),
+                             static_cast<double>(screen.width) / static_cast<double>(screen.height), framing);
+  return screen;
+}
+
+}  // namespace
 
 WoundJob read_wound_job(const JobNode& root, const TriMesh& mesh, const std::optional<std::string>& type_override) {
   WoundJob job;
@@ -51,9 +91,28 @@ WoundJob read_wound_job(const JobNode& root, const TriMesh& mesh, const std::opt
     const JobNode& node = strokes[s];
     WoundStroke stroke;
     stroke.radius_mm = node.get_number("radius_mm", 3.0, 0.05, 500.0);
-    const bool has_points = node.has("points"), has_uv = node.has("uv");
-    if (has_points == has_uv) node.fail("points", "give either \"points\" (mm) or \"uv\", not both or neither");
-    if (has_points) {
+    const bool has_points = node.has("points"), has_uv = node.has("uv"), has_screen = node.has("screen");
+    if (int(has_points) + int(has_uv) + int(has_screen) != 1) {
+      node.fail("points", "give one of \"points\" (mm), \"uv\" or \"screen\" (pixels with a \"camera\")");
+    }
+    if (has_screen) {
+      const StrokeScreen screen = read_stroke_screen(node.child("camera"), mesh);
+      const auto pixels = node.require<std::vector<std::vector<double>>>("screen");
+      if (pixels.empty() || pixels.size() > 100000) node.fail("screen", "needs 1 to 100000 points");
+      std::vector<Vec2> points;
+      for (std::size_t i = 0; i < pixels.size(); ++i) {
+        const auto& p = pixels[i];
+        if (p.size() != 2 || !std::isfinite(p[0]) || !std::isfinite(p[1])) {
+          node.fail("screen", "point " + std::to_string(i) + " is not two finite numbers");
+        }
+        points.push_back(Vec2(p[0], p[1]));
+      }
+      try {
+        stroke = record_screen_stroke(mesh, screen, points, stroke.radius_mm).stroke;
+      } catch (const InputError& err) {
+        node.fail("screen", err.problem());
+      }
+    } else if (has_points) {
       const auto points = node.require<std::vector<std::vector<double>>>("points");
       if (points.empty() || points.size() > 100000) node.fail("points", "needs 1 to 100000 points");
       for (std::size_t i = 0; i < points.size(); ++i) {

@@ -9,7 +9,10 @@
 ///     "distance": "surface",               // or "uv" (the thesis's way, for comparison)
 ///     "strokes": [
 ///       {"points": [[x, y, z], ...], "radius_mm": 3},   // surface points, mm
-///       {"uv": [[u, v], ...], "radius_mm": 2}            // or UV points (u right, v up)
+///       {"uv": [[u, v], ...], "radius_mm": 2},           // or UV points (u right, v up)
+///       {"screen": [[x, y], ...], "radius_mm": 3,         // or pixels drawn over a view of the mesh
+///        "camera": {"view": "front", "axes": "lps", "width": 1024, "height": 1024, "fov_deg": 30}}
+///        // (a named view framed on the mesh; axes "lps" or "y_up"; or "eye", "target", "up" in mm)
 ///     ],
 ///     "abrasion": {"thesis_texels_per_mm": 8, "scab_height_mm": 0.8, "skin_reflection": 0.25,
 ///                  "glow_thickness_px": 100, "scab_gradient_px": 100, "thesis_closing_distance": false},
@@ -19,6 +22,8 @@
 /// Without "keys" the wound type's default timeline is used; with them, each key names a phase of the type
 /// (abrasion phases, or bruise stages) at a time ("36h", "5d"); entries of the same phase and position
 /// share one key position (a hold), so the timeline's hold pairs and instant cuts are written plainly.
+/// Screen strokes are recorded as the thesis does (chapter 4.2.1, eqs. 4.1 to 4.3; wound/screen_stroke.hpp):
+/// a ray from the camera through each pixel, the first hit kept, pixels off the mesh skipped.
 
 #include <optional>
 #include <string>

@@ -35,7 +35,7 @@ TEST(WoundCli, WritesMapsGlbRendersAndTimeline) {
   for (const char* f :
        {"timeline.json", "run.json", "maps/key0_vasoconstriction_color.png", "maps/key0_vasoconstriction_height.exr",
         "maps/key5_scab_height.exr", "maps/key5_scab_normal.png", "maps/time_1.5d_color.png", "wound_time_1.5d.glb",
-        "wound_time_2w.glb", "timeline_keys.png", "timeline_times.png"}) {
+        "wound_time_2w.glb", "timeline_keys.png", "timeline_times.png", "overview.png"}) {
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   }
   const auto timeline = nlohmann::json::parse(read_file(out / "timeline.json"));
