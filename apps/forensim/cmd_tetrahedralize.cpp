@@ -42,6 +42,7 @@ struct TetArgs {
   int picture_size = 640;
   bool close_openings = false;
   bool non_manifold = false;
+  bool no_perturb = false;
 };
 
 /// The skin of a model from real input: as given, or remeshed isotropically to about `triangles`.
@@ -64,6 +65,7 @@ int run_tetrahedralize(const TetArgs& a) {
   options.seed = a.seed;
   options.close_openings = a.close_openings;
   options.manifold_boundary = !a.non_manifold;
+  if (a.no_perturb) options.perturb = false;
   const bool phantom_input = a.skin.empty() && a.ct.empty();
   if (!a.size.empty() && !phantom_input) throw Error("--size applies to the built-in phantoms only", ErrorKind::usage);
   if (!a.size.empty() && (a.edge > 0 || a.nodes > 0 || a.tets > 0))
@@ -203,6 +205,8 @@ const RegisterCommand tetrahedralize_command{
       sub->add_flag("--close-openings", a->close_openings,
                     "Cap large openings of the surfaces too (a bust's base, a cut limb), not only scan holes");
       sub->add_flag("--non-manifold", a->non_manifold, "Do not force a 2-manifold boundary (thin, touching shells)");
+      sub->add_flag("--no-perturb", a->no_perturb,
+                    "Skip Mesh_3's sliver perturbation (faster; exudation still removes slivers)");
       sub->add_option("--seed", a->seed, "Seed of the mesher's random choices");
       sub->add_option("--skin-triangles", a->skin_triangles,
                       "Remesh the model's skin to about this many triangles (default: the input skin as is)");

@@ -1,5 +1,6 @@
 #include "body/phantom_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -21,9 +22,9 @@ const PhantomModelSize size_table[] = {
     {"arm", "small", 8000, 39.0, 3.0, 6000, 3.0, 2.0, 29000, 141000, 19000},
     {"arm", "paper", 29000, 13.85, 2.0, 19000, 2.0, 1.5, 29000, 141000, 19000},
     {"arm", "fine", 80000, 9.3, 2.0, 76000, 1.5, 1.0, 29000, 141000, 19000},
-    {"head", "small", 11500, 44.0, 3.0, 20000, 3.0, 2.0, 35000, 149000, 122000},
-    {"head", "paper", 32400, 16.95, 3.0, 122000, 2.0, 1.0, 35000, 149000, 122000},
-    {"head", "fine", 100000, 10.9, 3.0, 300000, 1.5, 0.75, 35000, 149000, 122000},
+    {"head", "small", 11500, 44.0, 3.0, 20000, 3.0, 2.0, 35000, 149000, 122000, 7.0},
+    {"head", "paper", 32400, 16.95, 3.0, 122000, 2.0, 1.0, 35000, 149000, 122000, 7.0},
+    {"head", "fine", 100000, 10.9, 3.0, 300000, 1.5, 0.75, 35000, 149000, 122000, 7.0},
 };
 
 std::string join(const std::vector<std::string>& names) {
@@ -110,6 +111,7 @@ BodyModel make_phantom_model(const PhantomModelSize& size, const TetrahedralizeO
   options.target_nodes = size.volume_nodes;
   options.initial_edge_mm = size.initial_edge_mm;
   options.radius_edge_bound = size.radius_edge_bound;
+  options.min_dihedral_deg = std::min(options.min_dihedral_deg, size.sliver_bound_deg);
   TetMesh volume = tetrahedralize(skin_surface, {bone_surface}, options, &r.volume);
   r.seconds_volume = watch.lap();
 
