@@ -90,8 +90,8 @@ export async function showSkullEditor(ctx, params) {
   root.add(skull, markers, vectors, guideLines, face);
   ctx.stage.add(root);
   ctx.stage.fit(root, 'front');
-  const sphere = new THREE.SphereGeometry(2.2, 14, 10);
   const headSize = new THREE.Box3().setFromObject(skull).getSize(new THREE.Vector3());
+  const sphere = new THREE.SphereGeometry(0.01 * headSize.length(), 14, 10);  // about 3 mm on an adult skull
 
   let landmarks = s.landmarks, addable = s.addable, selected = '', faceVersion = 0, drag = null;
   const poses = new Map();  // expression name -> positions of the current face
@@ -252,9 +252,11 @@ export async function showSkullEditor(ctx, params) {
     if (!position) return;
     const released = performance.now();
     try {
-      // The answer for the final position: the live request's when it was sent from there, else a new one.
+      // The answer for the final position: the live request's when it went from there, else a new one, sent
+      // at once (the server serves the session's requests in order, so it answers after the live one).
       const final = position.map((v) => +v.toFixed(3));
-      if (inFlight) await inFlight;
+      const live = inFlight && lastSent && lastSent.every((v, k) => v === final[k]) ? inFlight : null;
+      if (live) await live;
       const waited = performance.now();
       const same = lastAnswer && lastAnswer.position.every((v, k) => v === final[k]);
       const answer = same ? lastAnswer.answer : await send(name, position);
