@@ -4,7 +4,8 @@
 // checks each view: the runs list, a wound run's timeline scrubbed (the wound's colour changes with time), the
 // wound editor (a stroke painted by ray cast, the timeline generated on the server and scrubbed), a
 // desiccation run stepped frame by frame and coloured by moisture, shrinkage and the skin's colour, the
-// surface run coloured by its uncertainty, and a run holding only a GLB. No console errors or page errors are
+// surface run coloured by its uncertainty, a run holding only a GLB, and the skull editor on the built-in skull
+// (landmarks dragged with the mouse, the face redrawn; see skullEditor). No console errors or page errors are
 // allowed.
 //
 // Golden screenshots: the 3D canvas of each view, drawn at a fixed window size from a camera preset and
@@ -18,10 +19,12 @@
 //
 // Measured and printed, not asserted: frames per second while the time slider of a 2048^2 wound map set is
 // moved every frame (requestAnimationFrame callbacks counted over 3 s; --fps-resolution N to change the
-// maps' size, 0 to skip). Screenshots of every view go to --shots DIR when given.
+// maps' size, 0 to skip), and the skull editor's time from a landmark drag's release to the updated face drawn.
+// Screenshots of every view go to --shots DIR when given; --only skull tests the skull editor alone
+// (--skull-detail coarse for a quicker template).
 //
 //   node tests/web/browser_test.mjs --forensim build/release/bin/forensim --web web [--shots DIR]
-//        [--goldens tests/golden/web] [--fps-resolution 2048]
+//        [--goldens tests/golden/web] [--fps-resolution 2048] [--only skull] [--skull-detail full|coarse]
 // Exit codes: 0 pass, 1 fail, 77 skipped (no chromium or no playwright-core).
 
 import { spawn, spawnSync } from 'node:child_process';
