@@ -1,6 +1,6 @@
 // forensim serve: the browser viewer and editor. Serves the web front end and a JSON API over the library
-// code the CLI uses (runs in the served folder, wound and mummify jobs run in the background), bound to
-// loopback unless --host says otherwise.
+// code the CLI uses (runs in the served folder, wound and mummify jobs run in the background, the skull
+// editor's in-memory reconstructions), bound to loopback unless --host says otherwise.
 
 #include <signal.h>
 #include <unistd.h>
@@ -27,6 +27,7 @@ struct ServeArgs {
   int max_jobs = 2;
   int job_threads = 1;
   double max_body_mb = 4.0;
+  int max_skull_sessions = 4;
 };
 
 std::filesystem::path default_web_dir() {
@@ -52,6 +53,7 @@ int run_serve(const ServeArgs& a) {
   options.max_running_jobs = a.max_jobs;
   options.threads_per_job = a.job_threads;
   options.max_body_bytes = static_cast<std::size_t>(a.max_body_mb * 1024.0 * 1024.0);
+  options.max_skull_sessions = a.max_skull_sessions;
   options.preload_meshes = true;
   if (!std::filesystem::is_regular_file(options.web_dir / "node_modules" / "three" / "build" / "three.module.js")) {
     std::fprintf(stderr,
@@ -81,7 +83,8 @@ int run_serve(const ServeArgs& a) {
 
 const RegisterCommand serve_command{
     "serve", [](CLI::App& app) {
-      auto* sub = app.add_subcommand("serve", "Browser viewer and editor of runs (wound painting, desiccation frames)");
+      auto* sub = app.add_subcommand(
+          "serve", "Browser viewer and editor of runs (wound painting, desiccation frames, skull editing)");
       auto a = std::make_shared<ServeArgs>();
       sub->add_option("dir", a->dir, "Folder of runs to serve; new runs are written into it (default: .)");
       sub->add_option("--host", a->host, "Address to listen on (default 127.0.0.1: this machine only)");
@@ -90,6 +93,8 @@ const RegisterCommand serve_command{
       sub->add_option("--max-jobs", a->max_jobs, "Jobs running at once")->check(CLI::Range(1, 64));
       sub->add_option("--job-threads", a->job_threads, "Threads per job")->check(CLI::Range(1, 4096));
       sub->add_option("--max-body-mb", a->max_body_mb, "Largest request body (MiB)")->check(CLI::Range(0.001, 1024.0));
+      sub->add_option("--max-skull-sessions", a->max_skull_sessions, "Skull editor sessions held at once")
+          ->check(CLI::Range(1, 64));
       return [a]() { return run_serve(*a); };
     }};
 

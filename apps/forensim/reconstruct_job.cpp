@@ -1,7 +1,6 @@
 #include "reconstruct_job.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -9,22 +8,6 @@
 
 namespace forensim::cli {
 namespace {
-
-constexpr double kBig = 1e6;  // mm: any guide coordinate beyond a kilometre is a mistake
-
-std::optional<double> optional_number(const JobNode& node, const std::string& key) {
-  if (!node.has(key)) return std::nullopt;
-  return node.get_number(key, 0.0, -kBig, kBig);
-}
-
-std::optional<Vec3> optional_vector(const JobNode& node, const std::string& key) {
-  if (!node.has(key)) return std::nullopt;
-  const auto values = node.require<std::vector<double>>(key);
-  if (values.size() != 3) node.fail(key, "expected [x, y, z], got " + std::to_string(values.size()) + " numbers");
-  for (double v : values)
-    if (!std::isfinite(v) || std::abs(v) > kBig) node.fail(key, "coordinates must be finite numbers (mm)");
-  return Vec3(values[0], values[1], values[2]);
-}
 
 std::string resolve_path(const std::string& value, const std::filesystem::path& base) {
   if (value.empty() || base.empty()) return value;
@@ -44,30 +27,6 @@ std::string path_value(const JobNode& root, const std::string& key, const std::s
 }
 
 }  // namespace
-
-FaceGuides read_face_guides(const JobNode& node) {
-  FaceGuides g;
-  if (auto v = optional_vector(node, "lateral")) g.lateral = *v;
-  if (auto v = optional_vector(node, "up")) g.up = *v;
-  g.nasal_aperture_left_mm = optional_number(node, "nasal_aperture_left_mm");
-  g.nasal_aperture_right_mm = optional_number(node, "nasal_aperture_right_mm");
-  g.alar_offset_mm = node.get_number("alar_offset_mm", g.alar_offset_mm, 0.0, 50.0);
-  g.nasal_spine_base = optional_vector(node, "nasal_spine_base");
-  g.nasal_spine_tip = optional_vector(node, "nasal_spine_tip");
-  g.krogman_factor = node.get_number("krogman_factor", g.krogman_factor, 0.0, 20.0);
-  g.mouth_corner_left_mm = optional_number(node, "mouth_corner_left_mm");
-  g.mouth_corner_right_mm = optional_number(node, "mouth_corner_right_mm");
-  g.upper_lip_border_mm = optional_number(node, "upper_lip_border_mm");
-  g.lower_lip_border_mm = optional_number(node, "lower_lip_border_mm");
-  g.lip_parting_mm = optional_number(node, "lip_parting_mm");
-  return g;
-}
-
-bool any_guide(const FaceGuides& g) {
-  return g.nasal_aperture_left_mm || g.nasal_aperture_right_mm || g.nasal_spine_base || g.nasal_spine_tip ||
-         g.mouth_corner_left_mm || g.mouth_corner_right_mm || g.upper_lip_border_mm || g.lower_lip_border_mm ||
-         g.lip_parting_mm;
-}
 
 ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
                                     const std::filesystem::path& base) {

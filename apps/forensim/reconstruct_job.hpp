@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "core/job.hpp"
-#include "craniofacial/face_guides.hpp"
+#include "craniofacial/face_guides_job.hpp"
 
 namespace forensim::cli {
 
@@ -66,12 +66,6 @@ struct ReconstructJob {
   std::optional<std::uint64_t> uncertainty_seed;
   std::vector<std::string> expressions = {"smile", "frown", "surprise"};
 };
-
-/// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError
-/// naming the key for wrong types, vectors that are not three finite numbers and values out of range.
-FaceGuides read_face_guides(const JobNode& node);
-/// True when at least one guide value is given in `guides`.
-bool any_guide(const FaceGuides& guides);
 
 /// Reads a reconstruction job; `defaults` supplies every value the job leaves out (the command line's).
 /// `base` is the folder relative paths are resolved against (empty: as given). Throws JobError.

@@ -13,6 +13,8 @@
 #include "server/frame_surface.hpp"
 #include "server/run_index.hpp"
 #include "server/served_path.hpp"
+#include "server/skull_session_request.hpp"
+#include "server/skull_sessions.hpp"
 #include "server/wound_job_kind.hpp"
 
 // Last: <resolv.h>, which httplib.h includes, defines the macro _res, a parameter name in Eigen's headers.
@@ -79,6 +81,15 @@ void send_json(httplib::Response& res, int status, const nlohmann::json& body) {
   res.set_content(body.dump(), "application/json");
 }
 
+// The skull editor's answers carry meshes (base64 float arrays, hundreds of kB that barely compress).
+// cpp-httplib 0.11 compresses "application/json" with brotli at its highest quality when the browser accepts
+// it, which took 0.76 s for a 13.5k-vertex face (gzip 13 ms, none 1 ms, on loopback); it leaves this exact
+// type with its charset alone.
+void send_mesh_json(httplib::Response& res, int status, const nlohmann::json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json; charset=utf-8");
+}
+
 void send_error(httplib::Response& res, int status, const std::string& message, const std::string& field = {}) {
   send_json(res, status, {{"error", {{"status", status}, {"message", message}, {"field", field}}}});
 }
@@ -140,12 +151,16 @@ struct ApiServer::Impl {
   httplib::Server http;
   std::shared_ptr<BuiltinMeshes> meshes = std::make_shared<BuiltinMeshes>();
   std::unique_ptr<JobManager> jobs;
+  std::shared_ptr<SkullTemplates> templates;
+  std::unique_ptr<SkullSessions> skull_sessions;
   std::thread thread;
   int port = -1;
   std::thread preload;
   std::atomic<bool> stopping{false};  ///< ends event streams, so stop() does not wait for running jobs
 
   void routes();
+  template <typename Get, typename Post, typename Delete>
+  void skull_routes(const Get& get, const Post& post, const Delete& del);
   void handle(const httplib::Request& req, httplib::Response& res,
               const std::function<void(const httplib::Request&, httplib::Response&)>& body) {
     try {
@@ -156,6 +171,83 @@ struct ApiServer::Impl {
   }
 };
 
+// The skull editor (skull_sessions.hpp).
+template <typename Get, typename Post, typename Delete>
+void ApiServer::Impl::skull_routes(const Get& get, const Post& post, const Delete& del) {
+  using Req = httplib::Request;
+  using Res = httplib::Response;
+  const std::string base = "/api/skull/sessions";
+  const std::string one = base + "/([^/]+)";
+  post(base, [this](const Req& req, Res& res) { send_mesh_json(res, 201, skull_sessions->create(req.body)); });
+  get(base, [this](const Req&, Res& res) { send_mesh_json(res, 200, skull_sessions->list()); });
+  get(one, [this](const Req& req, Res& res) {
+    const bool geometry = !req.has_param("geometry") || req.get_param_value("geometry") != "0";
+    send_mesh_json(res, 200, skull_sessions->find(req.matches[1])->describe(geometry));
+  });
+  del(one, [this](const Req& req, Res& res) { send_mesh_json(res, 200, skull_sessions->remove(req.matches[1])); });
+  post(one + "/landmarks", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    JobDocument doc = parse_request(req.body, "landmark edit");
+    const LandmarkEdit edit = read_landmark_edit(doc.root());
+    doc.check_all_used();
+    send_mesh_json(res, 200, session->move_landmark(edit));
+  });
+  post(one + "/depths", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    JobDocument doc = parse_request(req.body, "tissue depths");
+    const SkullDepthChoice choice = read_depth_choice(doc.root(), served);
+    doc.check_all_used();
+    send_mesh_json(res, 200, session->set_depths(choice));
+  });
+  post(one + "/guides", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    JobDocument doc = parse_request(req.body, "guides");
+    const std::optional<FaceGuides> guides = read_guides_request(doc.root());
+    doc.check_all_used();
+    send_mesh_json(res, 200, session->set_guides(guides));
+  });
+  post(one + "/expressions", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    JobDocument doc = parse_request(req.body, "expression");
+    const std::string name = doc.root().require<std::string>("name");
+    doc.check_all_used();
+    send_mesh_json(res, 200, session->expression(name));
+  });
+  get(one + R"(/(skull|skin)_landmarks\.mrk\.json)", [this](const Req& req, Res& res) {
+    const std::string which = req.matches[2];
+    res.status = 200;
+    res.set_content(skull_sessions->find(req.matches[1])->markups(which), "application/json");
+    res.set_header("Content-Disposition", "attachment; filename=\"" + which + "_landmarks.mrk.json\"");
+  });
+  get(one + R"(/head\.glb)", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    const auto expressions = expression_list(req.has_param("expressions") ? req.get_param_value("expressions") : "");
+    res.status = 200;
+    res.set_content(session->glb(expressions), "model/gltf-binary");
+    res.set_header("Content-Disposition", "attachment; filename=\"head.glb\"");
+  });
+  post(one + "/save", [this](const Req& req, Res& res) {
+    auto session = skull_sessions->find(req.matches[1]);
+    JobDocument doc = parse_request(req.body, "save");
+    const std::string output = doc.root().require<std::string>("output");
+    const auto names = doc.root().get<std::vector<std::string>>("expressions", {"smile", "frown", "surprise"});
+    doc.check_all_used();
+    if (!valid_output_name(output)) {
+      throw ApiError(400, "output folder name '" + output + "' must be 1 to 64 letters, digits, '.', '_' or '-'",
+                     "/output");
+    }
+    const ServedPath target = resolve_served_path(served, output, false);
+    if (target.problem != ServedPathProblem::none) throw ApiError(400, target.message, "/output");
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(target.path, ec))) {
+      throw ApiError(409, "output folder '" + output + "' exists already; choose another name", "/output");
+    }
+    nlohmann::json j = session->save(target.path, names);
+    j["output"] = output;
+    send_mesh_json(res, 201, j);
+  });
+}
+
 void ApiServer::Impl::routes() {
   using Req = httplib::Request;
   using Res = httplib::Response;
@@ -165,6 +257,9 @@ void ApiServer::Impl::routes() {
   auto post = [this](const std::string& pattern, std::function<void(const Req&, Res&)> body) {
     http.Post(pattern, [this, body](const Req& req, Res& res) { handle(req, res, body); });
   };
+  auto del = [this](const std::string& pattern, std::function<void(const Req&, Res&)> body) {
+    http.Delete(pattern, [this, body](const Req& req, Res& res) { handle(req, res, body); });
+  };
 
   get("/api/health", [this](const Req&, Res& res) {
     send_json(res, 200,
@@ -172,7 +267,11 @@ void ApiServer::Impl::routes() {
                {"served_folder", served.filename().string()},
                {"job_kinds", jobs->kind_names()},
                {"builtin_meshes", BuiltinMeshes::names()},
-               {"limits", {{"max_body_bytes", options.max_body_bytes}, {"max_running_jobs", options.max_running_jobs}}},
+               {"limits",
+                {{"max_body_bytes", options.max_body_bytes},
+                 {"max_running_jobs", options.max_running_jobs},
+                 {"max_skull_sessions", options.max_skull_sessions},
+                 {"skull_session_idle_s", options.skull_session_idle_s}}},
                {"running_jobs", jobs->running_count()}});
   });
   get("/api/runs", [this](const Req&, Res& res) { send_json(res, 200, list_runs(served)); });
@@ -234,6 +333,7 @@ void ApiServer::Impl::routes() {
       return true;
     });
   });
+  skull_routes(get, post, del);
   get(R"(/api/.*)", [](const Req& req, Res&) { throw ApiError(404, "no endpoint " + req.path); });
   post(R"(/.*)", [](const Req& req, Res&) { throw ApiError(404, "no endpoint " + req.path); });
   get(R"(/(.*))", [this](const Req& req, Res& res) {
@@ -260,6 +360,11 @@ ApiServer::ApiServer(ServerOptions options) : m_impl(std::make_unique<Impl>()) {
   jo.threads_per_job = m.options.threads_per_job;
   m.jobs = std::make_unique<JobManager>(jo);
   m.jobs->add_kind(wound_job_kind(m.meshes));
+  m.templates = m.options.skull_templates ? m.options.skull_templates : std::make_shared<SkullTemplates>();
+  SkullSessionLimits limits;
+  limits.max_sessions = m.options.max_skull_sessions;
+  limits.idle_seconds = m.options.skull_session_idle_s;
+  m.skull_sessions = std::make_unique<SkullSessions>(m.served, m.templates, limits);
   m.http.set_payload_max_length(m.options.max_body_bytes);
   m.http.set_keep_alive_timeout(2);
   // Errors httplib answers itself (413 over the limit, 404 without a route) get the same JSON body.
@@ -274,12 +379,16 @@ ApiServer::ApiServer(ServerOptions options) : m_impl(std::make_unique<Impl>()) {
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) { send_exception(res, ep); });
   m.routes();
   if (m.options.preload_meshes) {
-    m.preload = std::thread([meshes = m.meshes] {
+    m.preload = std::thread([meshes = m.meshes, templates = m.templates] {
       for (const std::string& name : BuiltinMeshes::names()) {
         try {
           meshes->glb(name);
         } catch (const std::exception&) {  // answered again (with the error) when a request asks for it
         }
+      }
+      try {
+        templates->get("full");
+      } catch (const std::exception&) {
       }
     });
   }
@@ -289,6 +398,7 @@ ApiServer::~ApiServer() {
   stop();
   if (m_impl->preload.joinable()) m_impl->preload.join();
   m_impl->jobs.reset();
+  m_impl->skull_sessions.reset();
 }
 
 JobManager& ApiServer::jobs() {

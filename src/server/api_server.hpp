@@ -15,6 +15,7 @@
 ///   GET  /api/jobs                    jobs; POST /api/jobs starts one (job_manager.hpp), 202
 ///   GET  /api/jobs/ID                 one job; POST /api/jobs/ID/cancel cancels it
 ///   GET  /api/jobs/ID/events          server-sent events: the job's description on each change, until it ends
+///   /api/skull/sessions...            the skull editor's in-memory sessions (skull_sessions.hpp)
 ///   GET  /...                         files of the web folder ("/" is index.html)
 
 #include <nlohmann/json.hpp>
@@ -27,6 +28,8 @@
 
 namespace forensim {
 
+class SkullTemplates;
+
 struct ServerOptions {
   std::string host = "127.0.0.1";                     ///< address to bind; loopback unless the user asks otherwise
   int port = 8080;                                    ///< 0: any free port (see ApiServer::port())
@@ -36,9 +39,15 @@ struct ServerOptions {
   std::size_t max_body_bytes = std::size_t{4} << 20;  ///< larger request bodies answer 413
   int max_running_jobs = 2;
   int threads_per_job = 1;
-  /// Builds the built-in meshes in the background from the start, so the wound editor's first load does
-  /// not wait for the forearm-uv atlas (about 15 s).
+  /// Builds the built-in meshes and the skull editor's full template head in the background from the start,
+  /// so the wound editor's first load does not wait for the forearm-uv atlas (about 15 s), nor the skull
+  /// editor's for the template (about 6 s).
   bool preload_meshes = false;
+  int max_skull_sessions = 4;            ///< skull editor sessions at once; more answer 429
+  double skull_session_idle_s = 1800.0;  ///< a skull session without a request for this long is forgotten
+  /// The skull editor's template heads; null: the server builds its own. Servers in one process (the tests)
+  /// can share one, so each template is built once.
+  std::shared_ptr<SkullTemplates> skull_templates;
 };
 
 class ApiServer {

@@ -5,6 +5,7 @@
 
 #include "core/run_folder.hpp"
 #include "forensim/mummify_job.hpp"
+#include "server/skull_templates.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
 
@@ -71,7 +72,13 @@ void write_cube_desiccation_run(const std::filesystem::path& folder) {
   run.write_record();
 }
 
-TestServer::TestServer(const std::filesystem::path& served, std::size_t max_body_bytes, int max_jobs) {
+std::shared_ptr<SkullTemplates> shared_skull_templates() {
+  static const auto templates = std::make_shared<SkullTemplates>();
+  return templates;
+}
+
+TestServer::TestServer(const std::filesystem::path& served, std::size_t max_body_bytes, int max_jobs,
+                       int max_skull_sessions) {
   ServerOptions options;
   options.port = 0;
   options.served_dir = served;
@@ -79,6 +86,8 @@ TestServer::TestServer(const std::filesystem::path& served, std::size_t max_body
   options.executable = FORENSIM_CLI_PATH;
   options.max_body_bytes = max_body_bytes;
   options.max_running_jobs = max_jobs;
+  options.max_skull_sessions = max_skull_sessions;
+  options.skull_templates = shared_skull_templates();
   server = std::make_unique<ApiServer>(options);
   server->jobs().add_kind(cli::mummify_job_kind());
   port = server->start();

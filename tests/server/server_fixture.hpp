@@ -24,9 +24,13 @@ namespace forensim::test {
 /// "moisture_ratio" (1 - 0.25 frame x), "uncertainty" (0.5 + z) and "colour" ((0.5, 0.25 (1 + frame), 0.125)).
 void write_cube_desiccation_run(const std::filesystem::path& folder);
 
+/// One set of the skull editor's template heads for every server of the test program (each built once).
+std::shared_ptr<SkullTemplates> shared_skull_templates();
+
 /// A server over `served` with the wound and mummify job kinds; started on a free port.
 struct TestServer {
-  explicit TestServer(const std::filesystem::path& served, std::size_t max_body_bytes = 65536, int max_jobs = 2);
+  explicit TestServer(const std::filesystem::path& served, std::size_t max_body_bytes = 65536, int max_jobs = 2,
+                      int max_skull_sessions = 4);
   ~TestServer();
   httplib::Client client() const;
   /// Waits until the job ends (polling GET /api/jobs/ID); returns its last description.

@@ -1,10 +1,12 @@
-// forensim serve's front end: a hash router over the views (runs, a run, the wound editor, desiccation)
+// forensim serve's front end: a hash router over the views (runs, a run, the wound editor, desiccation,
+// the skull editor)
 // sharing one 3D stage. Each view marks document.body.dataset.ready = "1" once drawn, which the browser
 // tests wait for.
 
 import { Stage } from './stage.js';
 import { showDesiccation } from './desiccation_view.js';
 import { showRuns } from './runs_view.js';
+import { showSkullEditor } from './skull_view.js';
 import { showSurfaceRun } from './surface_view.js';
 import { showWoundEditor, showWoundRun } from './wound_view.js';
 import { describeRun } from './api.js';
@@ -23,7 +25,9 @@ async function showRun(ctx, params) {
   return showSurfaceRun(ctx, path);
 }
 
-const views = { runs: showRuns, run: showRun, wound: showWoundEditor, desiccation: showDesiccation };
+const views = {
+  runs: showRuns, run: showRun, wound: showWoundEditor, desiccation: showDesiccation, skull: showSkullEditor,
+};
 
 let generation = 0;
 async function route() {
