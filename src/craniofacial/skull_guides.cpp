@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/head_frame.hpp"
 #include "geometry/bounding_box.hpp"
 #include "spatial/ray_caster.hpp"
@@ -173,14 +174,8 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
   return m;
 }
 
-bool has_any_guide(const FaceGuides& g) {
-  return g.nasal_aperture_left_mm || g.nasal_aperture_right_mm || g.nasal_spine_base || g.nasal_spine_tip ||
-         g.mouth_corner_left_mm || g.mouth_corner_right_mm || g.upper_lip_border_mm || g.lower_lip_border_mm ||
-         g.lip_parting_mm;
-}
-
 FaceGuides merge_face_guides(const FaceGuides& measured, const FaceGuides& given) {
-  FaceGuides out = has_any_guide(given) ? given : measured;
+  FaceGuides out = any_guide(given) ? given : measured;
   auto keep = [](auto& slot, const auto& value) {
     if (!slot) slot = value;
   };

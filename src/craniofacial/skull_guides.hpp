@@ -63,7 +63,4 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
 /// rule constants from `given` when it sets any value, else from `measured`).
 FaceGuides merge_face_guides(const FaceGuides& measured, const FaceGuides& given);
 
-/// True when any guide value is set.
-bool has_any_guide(const FaceGuides& guides);
-
 }  // namespace forensim

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/skull_guides.hpp"
 #include "template_head_fixture.hpp"
 
@@ -59,8 +60,8 @@ TEST(SkullGuides, SpineLengthIsHowFarAnsStandsInFrontOfPointA) {
   EXPECT_EQ(*merged.mouth_corner_right_mm, *m.guides.mouth_corner_right_mm);
   EXPECT_EQ(*merged.nasal_aperture_left_mm, *m.guides.nasal_aperture_left_mm);
   EXPECT_EQ(*merged.nasal_spine_tip, *m.guides.nasal_spine_tip);
-  EXPECT_FALSE(has_any_guide(FaceGuides{}));
-  EXPECT_TRUE(has_any_guide(merged));
+  EXPECT_FALSE(any_guide(FaceGuides{}));
+  EXPECT_TRUE(any_guide(merged));
 }
 
 TEST(SkullGuides, MissingLandmarksAreReportedAndAnEmptySkullIsRefused) {
@@ -68,7 +69,7 @@ TEST(SkullGuides, MissingLandmarksAreReportedAndAnEmptySkullIsRefused) {
   const SkullGuideMeasurement none = measure_skull_guides(head.skull, LandmarkSet("empty"));
   EXPECT_TRUE(none.measured.empty());
   EXPECT_EQ(none.missing.size(), 3u);
-  EXPECT_FALSE(has_any_guide(none.guides));
+  EXPECT_FALSE(any_guide(none.guides));
   EXPECT_THROW(measure_skull_guides(TriMesh{}, LandmarkSet("x")), InputError);
   SkullGuideOptions bad;
   bad.sample_step_mm = 0.0;
