@@ -81,7 +81,7 @@ void send_json(httplib::Response& res, int status, const nlohmann::json& body) {
   res.set_content(body.dump(), "application/json");
 }
 
-// The skull editor's answers carry meshes (base64 float arrays, hundreds of kB that barely compress).
+// The skull editor's answers and the frames of a run carry meshes (base64 float arrays, hundreds of kB that barely compress).
 // cpp-httplib 0.11 compresses "application/json" with brotli at its highest quality when the browser accepts
 // it, which took 0.76 s for a 13.5k-vertex face (gzip 13 ms, none 1 ms, on loopback); it leaves this exact
 // type with its charset alone.
@@ -291,7 +291,7 @@ void ApiServer::Impl::routes() {
     const std::string relative = query(req, "path");
     const fs::path file = require_path(served, relative, "path");
     if (file.extension() != ".vtu") throw ApiError(400, "path '" + relative + "' is not a .vtu frame", "path");
-    send_json(res, 200, frame_surface_json(file));
+    send_mesh_json(res, 200, frame_surface_json(file));
   });
   get("/api/meshes", [](const Req&, Res& res) { send_json(res, 200, {{"meshes", BuiltinMeshes::names()}}); });
   get(R"(/api/meshes/([^/]+)\.glb)", [this](const Req& req, Res& res) {
