@@ -314,9 +314,9 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       m_attach_radius[i] = tracking.rest_distance[i];
       m_anchors[i] = t;
     } else {
-      // r_max grows in proportion to the moisture loss (section 8.2), r_j = (1 - k_j) r_max (eq. 33).
+      // The slip radius r_j (eq. 33) opens from 0 to r_max as the stiffness falls with the moisture (eq. 35).
       m_anchors[i] = t + model.vertex_tracking_offset[i];
-      m_attach_radius[i] = tracking_radius(0.0, k, (1.0 - moisture(i)) * model.r_max_mm);
+      m_attach_radius[i] = slip_radius_mm(moisture(i), settings.slippage, model.r_max_mm);
       if (k > 0.0) {
         const Vec3 pull = tracking_pull(x[i], m_anchors[i], m_attach_radius[i], k);
         if (pull.squaredNorm() > 0.0) {
@@ -392,10 +392,13 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     }
     for_each_item(n, [&](std::size_t i) {
       if (w[i] <= 0.0) return;
-      if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
+      if (m_outward[i]) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
-      } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
-        p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i]).dp0;
+      } else {
+        // Pulled towards the anchor beyond r_j with k_j, and never farther than r_max from it.
+        if (settings.hold_inward && m_tracking_stiffness[i] > 0.0)
+          p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i]).dp0;
+        p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, model.r_max_mm, 1.0).dp0;
       }
       if (m_has_plane[i])
         p[i] +=

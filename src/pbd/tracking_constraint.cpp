@@ -1,7 +1,5 @@
 #include "pbd/tracking_constraint.hpp"
 
-#include <algorithm>
-
 namespace forensim {
 
 double tracking_value(const Vec3& p, const Vec3& t, double radius) {
@@ -24,10 +22,6 @@ PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double
 
 Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness) {
   return project_tracking(p, t, 1.0, 0.0, radius, stiffness).dp0;
-}
-
-double tracking_radius(double rest_distance, double stiffness, double r_max) {
-  return rest_distance + (1.0 - std::clamp(stiffness, 0.0, 1.0)) * r_max;
 }
 
 }  // namespace forensim

@@ -40,10 +40,3 @@ TEST(TrackingConstraint, PullPointsToTheTrackingPointBeyondTheRadius) {
   EXPECT_NEAR((pull - Vec3(0, 0, -1.0)).norm(), 0.0, 1e-12);
   EXPECT_EQ(tracking_pull(Vec3(0, 0.5, 0), t, 1.0, 0.5), Vec3::Zero());
 }
-
-TEST(TrackingConstraint, RadiusGrowsAsTheStiffnessFalls) {
-  // eq. 33, measured beyond the rest distance l_i.
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 1.0, 2.0), 0.25);
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.5, 2.0), 1.25);
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.0, 2.0), 2.25);
-}
