@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "body/tracking.hpp"
@@ -209,6 +210,45 @@ TEST(SkinSimulation, ShrinkingSphereWrinklesWithoutInvertedTriangles) {
     const WrinkleMeasure end = wrinkle_measure(state.positions, model.triangles);
     EXPECT_GT(end.mean_abs_curvature_per_mm, 0.99 / mean_radius) << "skin shrinkage " << shrinkage;
   }
+}
+
+TEST(SkinSimulation, Figure8SetsOrderTheWrinklesOfCompressedDriedSkin) {
+  // The ball shrinks to 0.6 of its size while the skin dries below tau_n in the first third (and keeps its own
+  // size: no skin shrinkage), so most of the shrinkage compresses slipped skin, which folds within r_max of its
+  // anchors, as the flesh of the dried arm shrinks under its skin. Figure 8's sets (r_max against the edge length
+  // as on the small arm, there 0.4 mm over 5 mm edges for set 0: five times the sets' relative r_max on this
+  // 20 mm ball) order the wrinkles' height over the skin glued to the shrunk ball.
+  constexpr int steps = 90;
+  std::vector<WrinkleSize> sizes;
+  for (int set = 0; set < 3; ++set) {
+    SkinSettings settings;
+    settings.skin_shrinkage = 0.0;
+    settings.wrinkle = WrinkleControls::figure8(set);
+    settings.wrinkle.r_max_relative *= 5.0;
+    const SkinModel model = make_skin_model(sphere(), settings);
+    SkinSimulation sim(model);
+    SkinState state = initial_skin_state(model);
+    std::vector<Vec3> nodes;
+    for (int s = 1; s <= steps; ++s) {
+      const double f = static_cast<double>(s) / steps;
+      nodes = test::scaled_nodes(sphere().volume, 1.0 - 0.4 * f);
+      sim.step(state, nodes, std::vector<double>(model.vertex_count(), std::max(0.05, 1.0 - 3.0 * f)), dt);
+    }
+    EXPECT_EQ(inverted_triangles(state, model), 0u) << "set " << set;
+    std::vector<Vec3> glued = tracking_points(model.tracking, nodes);
+    for (std::size_t i = 0; i < glued.size(); ++i) glued[i] += model.vertex_tracking_offset[i];
+    sizes.push_back(wrinkle_size(state.positions, glued, model.triangles));
+    std::printf("set %d (r_max %.3f mm): wrinkle height %.4f mm, wavelength %.2f mm (mean edge %.2f mm)\n", set,
+                model.r_max_mm, sizes.back().height_mm, sizes.back().wavelength_mm, model.mean_edge_mm);
+    // Folds along the skin's edges (section 9.3: "wrinkles form along triangles edges"), not a smooth lift.
+    EXPECT_GT(sizes.back().wavelength_mm, 0.5 * model.mean_edge_mm) << "set " << set;
+    EXPECT_LT(sizes.back().wavelength_mm, 5.0 * model.mean_edge_mm) << "set " << set;
+    // No fold is higher than the slip radius allows.
+    EXPECT_LT(sizes.back().height_mm, model.r_max_mm) << "set " << set;
+  }
+  EXPECT_GT(sizes[0].height_mm, 0.0);
+  EXPECT_GT(sizes[1].height_mm, 1.3 * sizes[0].height_mm);
+  EXPECT_GT(sizes[2].height_mm, 1.3 * sizes[1].height_mm);
 }
 
 TEST(SkinSimulation, SameResultAtAnyThreadCount) {
