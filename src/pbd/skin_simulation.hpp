@@ -156,6 +156,7 @@ class SkinSimulation {
       m_plane_normals;
   std::vector<double> m_tracking_stiffness, m_tracking_pass_stiffness, m_edge_stiffness, m_edge_rest_length,
       m_pair_stiffness, m_attach_radius;
+  std::vector<double> m_moisture, m_stiffness_moisture;  ///< clamped moisture of this step, of the stiffness above
   std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
   // Constraints in colour order: slot s of colour c lies in [offsets[c], offsets[c + 1]).
   std::vector<std::size_t> m_stretch_offsets, m_bending_offsets;

@@ -1,5 +1,7 @@
 #include "pbd/tracking_constraint.hpp"
 
+#include <algorithm>
+
 namespace forensim {
 
 double tracking_value(const Vec3& p, const Vec3& t, double radius) {
@@ -18,6 +20,16 @@ PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double
   out.dp0 = -w_p * s * n;
   out.dp1 = w_t * s * n;
   return out;
+}
+
+Vec3 project_tracking_bounded(const Vec3& p, const Vec3& a, double radius, double stiffness, double bound) {
+  const Vec3 d = p - a;
+  const double length = d.norm();
+  double target = length;
+  if (length > radius) target = length - stiffness * (length - radius);
+  target = std::min(target, bound);
+  if (!(length > 0.0) || target >= length) return Vec3::Zero();
+  return ((target - length) / length) * d;
 }
 
 Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness) {

@@ -23,6 +23,11 @@ double tracking_value(const Vec3& p, const Vec3& t, double radius);
 /// [0, 1]. Conserves linear momentum (m_p dp + m_t dt = 0).
 PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double w_t, double radius, double stiffness);
 
+/// The inward-facing connection of a skin vertex p to its fixed anchor a in one pass (w_t = 0): p moves towards a
+/// to |p - a| - k C with C = |p - a| - radius when C > 0 (project_tracking), and then no farther than `bound`
+/// (>= 0, stiffness 1) from a. Returns p's correction.
+Vec3 project_tracking_bounded(const Vec3& p, const Vec3& a, double radius, double stiffness, double bound);
+
 /// The pulling correction of eq. 34 for a skin vertex whose tracking point does not move (w_t = 0):
 /// -k C n when |t - p| > r, else zero; the caller adds it to the velocity (divided by the time step).
 Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness);
