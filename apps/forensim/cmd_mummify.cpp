@@ -384,15 +384,18 @@ int run_mummify(const MummifyArgs& a) {
   // How wrinkled the final skin is: the fine part of its lift-off from the skin glued to the final volume, and
   // the measures of the skin alone (pbd/wrinkle_measure.hpp).
   const std::vector<Vec3> glued = skin_positions_for_frame(model.body, skin_rest_offsets(model.body), state.positions);
-  const double wrinkle_height = wrinkle_height_mm(motion.positions(), glued, model.body.skin.triangles);
+  const WrinkleSize wrinkle = wrinkle_size(motion.positions(), glued, model.body.skin.triangles);
   const WrinkleMeasure wrinkles = wrinkle_measure(motion.positions(), model.body.skin.triangles);
   run.facts()["skin_pbd"] = motion.pbd();
   run.facts()["skin_steps"] = motion.step_count();
-  run.facts()["skin_wrinkle_height_mm"] = wrinkle_height;
+  run.facts()["skin_wrinkle_height_mm"] = wrinkle.height_mm;
+  run.facts()["skin_wrinkle_wavelength_mm"] = wrinkle.wavelength_mm;
   run.facts()["skin_wrinkle_rms_mm"] = wrinkles.rms_smooth_distance_mm;
   run.facts()["skin_mean_abs_curvature_per_mm"] = wrinkles.mean_abs_curvature_per_mm;
-  std::printf("skin wrinkles: height %.4f mm over the glued skin, RMS from smoothed %.4f mm, mean |H| %.5f /mm\n",
-              wrinkle_height, wrinkles.rms_smooth_distance_mm, wrinkles.mean_abs_curvature_per_mm);
+  std::printf(
+      "skin wrinkles: height %.4f mm over the glued skin (wavelength %.1f mm), RMS from smoothed %.4f mm, mean |H| "
+      "%.5f /mm\n",
+      wrinkle.height_mm, wrinkle.wavelength_mm, wrinkles.rms_smooth_distance_mm, wrinkles.mean_abs_curvature_per_mm);
   // Does the skin cling to the bones, and is it still a clean surface?
   const std::size_t inverted = inverted_skin_triangles(model.body.skin, motion.positions());
   const std::size_t crossings = skin_self_intersections(model.body.skin, motion.positions());
@@ -421,17 +424,22 @@ int run_mummify(const MummifyArgs& a) {
       const std::vector<Vec3>& x = figure8[k]->positions();
       const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
       const WrinkleMeasure w = wrinkle_measure(x, model.body.skin.triangles);
-      figure8_height.push_back(wrinkle_height_mm(x, glued, model.body.skin.triangles));
+      const WrinkleSize size = wrinkle_size(x, glued, model.body.skin.triangles);
+      figure8_height.push_back(size.height_mm);
       sets.push_back({{"set", k},
                       {"r_max_relative", c.r_max_relative},
                       {"damping", c.damping},
-                      {"wrinkle_height_mm", figure8_height.back()},
+                      {"wrinkle_height_mm", size.height_mm},
+                      {"wrinkle_wavelength_mm", size.wavelength_mm},
                       {"wrinkle_rms_mm", w.rms_smooth_distance_mm},
                       {"mean_abs_curvature_per_mm", w.mean_abs_curvature_per_mm},
-                      {"inverted_triangles", inverted_skin_triangles(model.body.skin, x)}});
+                      {"inverted_triangles", inverted_skin_triangles(model.body.skin, x)},
+                      {"self_intersections", skin_self_intersections(model.body.skin, x)}});
       std::printf(
-          "figure 8 set %zu (r_max %.3f, damping %.2f): wrinkle height %.4f mm, RMS %.4f mm, mean |H| %.5f /mm\n", k,
-          c.r_max_relative, c.damping, figure8_height.back(), w.rms_smooth_distance_mm, w.mean_abs_curvature_per_mm);
+          "figure 8 set %zu (r_max %.3f, damping %.2f): wrinkle height %.4f mm (wavelength %.1f mm), RMS %.4f mm, "
+          "mean |H| %.5f /mm\n",
+          k, c.r_max_relative, c.damping, size.height_mm, size.wavelength_mm, w.rms_smooth_distance_mm,
+          w.mean_abs_curvature_per_mm);
     }
     run.facts()["figure8"] = sets;
   }

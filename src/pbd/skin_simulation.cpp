@@ -46,29 +46,39 @@ struct Contact {
   double height = std::numeric_limits<double>::infinity();
 };
 
-/// The closest of vertex i's candidate boundary faces to p, with its outward normal and p's height over it.
+/// The closest of vertex i's candidate boundary faces to p, with its outward normal and p's height over it (of
+/// faces equally close, the one with the lowest index). The tracking face, usually the closest, is tried first, so
+/// that the plane test below skips most of the others.
 Contact detect_contact(const SkinModel& model, std::size_t i, const Vec3& p, const std::vector<Vec3>& nodes,
                        const std::vector<Vec3>& face_normals) {
   Contact best;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (Index k = model.vertex_collision_offsets[i]; k < model.vertex_collision_offsets[i + 1]; ++k) {
-    const auto f = static_cast<std::size_t>(model.vertex_collision_faces[static_cast<std::size_t>(k)]);
+  std::size_t best_face = std::numeric_limits<std::size_t>::max();
+  auto consider = [&](std::size_t f) {
     const Tri& tri = model.boundary_face_nodes[f];
     const Vec3& a = nodes[static_cast<std::size_t>(tri[0])];
+    // The distance to the face's plane bounds the distance to the face from below: a face whose plane is
+    // farther than the best face so far cannot win.
+    const double plane = face_normals[f].dot(p - a);
+    const double plane2 = plane * plane;
+    if (plane2 > best_distance || (plane2 == best_distance && f > best_face)) return;
     const Vec3& b = nodes[static_cast<std::size_t>(tri[1])];
     const Vec3& c = nodes[static_cast<std::size_t>(tri[2])];
-    // The distance to the face's plane bounds the distance to the face from below: a face whose plane is no
-    // nearer than the best face so far cannot win.
-    const double plane = face_normals[f].dot(p - a);
-    if (plane * plane >= best_distance) continue;
     const Vec3 w = closest_point_on_triangle(p, a, b, c);
     const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
     const double d = (p - q).squaredNorm();
-    if (d < best_distance) {
+    if (d < best_distance || (d == best_distance && f < best_face)) {
       best_distance = d;
+      best_face = f;
       best.point = q;
       best.normal = face_normals[f];
     }
+  };
+  const auto first = static_cast<std::size_t>(model.tracking.boundary_face[i]);
+  consider(first);
+  for (Index k = model.vertex_collision_offsets[i]; k < model.vertex_collision_offsets[i + 1]; ++k) {
+    const auto f = static_cast<std::size_t>(model.vertex_collision_faces[static_cast<std::size_t>(k)]);
+    if (f != first) consider(f);
   }
   if (best_distance < std::numeric_limits<double>::infinity()) best.height = best.normal.dot(p - best.point);
   return best;
@@ -264,41 +274,48 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
   // 1. Tracking points, stiffness from moisture.
   compute_face_normals(model, volume_node_positions, m_face_normals);
   m_tracking_points.resize(n);
-  m_tracking_stiffness.resize(n);
   m_attach_radius.resize(n);
   m_anchors.resize(n);
   m_outward.assign(n, 0);
   std::vector<std::uint8_t> pulled(n, 0);
-  auto moisture = [&](std::size_t i) {
-    const double m = vertex_moisture_ratio[i];
-    return std::isfinite(m) ? std::clamp(m, 0.0, 1.0) : 1.0;
-  };
-  m_tracking_pass_stiffness.resize(n);
+  m_moisture.resize(n);
   for_each_item(n, [&](std::size_t i) {
+    const double m = vertex_moisture_ratio[i];
+    m_moisture[i] = std::isfinite(m) ? std::clamp(m, 0.0, 1.0) : 1.0;
     m_tracking_points[i] = tracking_point(tracking, i, volume_node_positions);
-    m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
-    m_tracking_pass_stiffness[i] = per_iteration(m_tracking_stiffness[i], iterations);
   });
+  auto moisture = [&](std::size_t i) { return m_moisture[i]; };
   const int bending_interval = std::min(settings.bending_interval, iterations);
   const int bending_passes = (iterations + bending_interval - 1) / bending_interval;
-  m_edge_stiffness.resize(m_stretch_vertices.size());
-  m_edge_rest_length.resize(m_stretch_vertices.size());
-  for_each_item(m_stretch_vertices.size(), [&](std::size_t e) {
-    const auto& [a, b] = m_stretch_vertices[e];
-    const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
-    m_edge_stiffness[e] = per_iteration(
-        settings.stretch_stiffness_dry + (settings.stretch_stiffness_wet - settings.stretch_stiffness_dry) * m,
-        iterations);
-    m_edge_rest_length[e] = m_stretch_rest[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
-  });
-  m_pair_stiffness.resize(m_bending_vertices.size());
-  for_each_item(m_bending_vertices.size(), [&](std::size_t b) {
-    double m = 0.0;
-    for (std::uint32_t q : m_bending_vertices[b]) m += 0.25 * moisture(q);
-    m_pair_stiffness[b] = per_iteration(
-        settings.bending_stiffness_dry + (settings.bending_stiffness_wet - settings.bending_stiffness_dry) * m,
-        bending_passes);
-  });
+  // The stiffness and rest lengths depend on the moisture alone: recomputed only when it changed (the substeps
+  // of a shape solve share one moisture state).
+  if (m_moisture != m_stiffness_moisture) {
+    m_stiffness_moisture = m_moisture;
+    m_tracking_stiffness.resize(n);
+    m_tracking_pass_stiffness.resize(n);
+    for_each_item(n, [&](std::size_t i) {
+      m_tracking_stiffness[i] = tracking_stiffness(moisture(i), settings.slippage);
+      m_tracking_pass_stiffness[i] = per_iteration(m_tracking_stiffness[i], iterations);
+    });
+    m_edge_stiffness.resize(m_stretch_vertices.size());
+    m_edge_rest_length.resize(m_stretch_vertices.size());
+    for_each_item(m_stretch_vertices.size(), [&](std::size_t e) {
+      const auto& [a, b] = m_stretch_vertices[e];
+      const double m = 0.5 * (moisture(static_cast<std::size_t>(a)) + moisture(static_cast<std::size_t>(b)));
+      m_edge_stiffness[e] = per_iteration(
+          settings.stretch_stiffness_dry + (settings.stretch_stiffness_wet - settings.stretch_stiffness_dry) * m,
+          iterations);
+      m_edge_rest_length[e] = m_stretch_rest[e] * (1.0 - settings.skin_shrinkage * (1.0 - m));
+    });
+    m_pair_stiffness.resize(m_bending_vertices.size());
+    for_each_item(m_bending_vertices.size(), [&](std::size_t b) {
+      double m = 0.0;
+      for (std::uint32_t q : m_bending_vertices[b]) m += 0.25 * moisture(q);
+      m_pair_stiffness[b] = per_iteration(
+          settings.bending_stiffness_dry + (settings.bending_stiffness_wet - settings.bending_stiffness_dry) * m,
+          bending_passes);
+    });
+  }
 
   // 2. External forces and the pull of inward-facing connections (eq. 34), before damping.
   for_each_item(n, [&](std::size_t i) {
@@ -314,9 +331,9 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
       m_attach_radius[i] = tracking.rest_distance[i];
       m_anchors[i] = t;
     } else {
-      // r_max grows in proportion to the moisture loss (section 8.2), r_j = (1 - k_j) r_max (eq. 33).
+      // The slip radius r_j (eq. 33) opens from 0 to r_max as the stiffness falls with the moisture (eq. 35).
       m_anchors[i] = t + model.vertex_tracking_offset[i];
-      m_attach_radius[i] = tracking_radius(0.0, k, (1.0 - moisture(i)) * model.r_max_mm);
+      m_attach_radius[i] = slip_radius_mm(moisture(i), settings.slippage, model.r_max_mm);
       if (k > 0.0) {
         const Vec3 pull = tracking_pull(x[i], m_anchors[i], m_attach_radius[i], k);
         if (pull.squaredNorm() > 0.0) {
@@ -392,10 +409,12 @@ SkinStepReport SkinSimulation::step(SkinState& state, const std::vector<Vec3>& v
     }
     for_each_item(n, [&](std::size_t i) {
       if (w[i] <= 0.0) return;
-      if (m_outward[i] && m_tracking_stiffness[i] > 0.0) {
+      if (m_outward[i]) {
         p[i] += project_tracking(p[i], m_tracking_points[i], 1.0, 0.0, m_attach_radius[i], 1.0).dp0;
-      } else if (settings.hold_inward && m_tracking_stiffness[i] > 0.0) {
-        p[i] += project_tracking(p[i], m_anchors[i], 1.0, 0.0, m_attach_radius[i], m_tracking_pass_stiffness[i]).dp0;
+      } else {
+        // Pulled towards the anchor beyond r_j with k_j, and never farther than r_max from it.
+        const double k = settings.hold_inward ? m_tracking_pass_stiffness[i] : 0.0;
+        p[i] += project_tracking_bounded(p[i], m_anchors[i], m_attach_radius[i], k, model.r_max_mm);
       }
       if (m_has_plane[i])
         p[i] +=

@@ -5,17 +5,18 @@
 ///  1. tracking points t_i from the current volume node positions (the stored tracking connections), the
 ///     tracking stiffness k_j from the skin's moisture (slippage, eq. 35) and the stretch and bending
 ///     stiffness from it (dry skin is stiffer: it turns leathery);
-///  2. v += dt w f_ext; for inward-facing connections farther than r_j = (1 - k_j) r_max (eq. 33) from their
-///     anchor (the tracking point plus the vertex's rest offset from it, so r_j is the lift-off from the
-///     volume's surface), the pulling correction of eq. 34 is added to the velocity. The maximum radius "will
-///     change in proportion to moisture loss" (section 8.2): a vertex with moisture ratio m uses (1 - m) r_max,
-///     so fresh skin is held at its rest distance and dry skin may lift off by up to (1 - k_j) r_max;
+///  2. v += dt w f_ext; for inward-facing connections farther than the slip radius r_j from their anchor (the
+///     tracking point plus the vertex's rest offset from it, so r_j is the lift-off from the volume's surface),
+///     the pulling correction of eq. 34 with stiffness k_j is added to the velocity. r_j = (1 - k_j / k_t) r_max
+///     (eq. 33, skin_slippage.hpp) is 0 for wet skin and opens to r_max as the skin dries and k_j falls (eq. 35);
 ///  3. velocity damping (k_damping; by default of the skin's velocity relative to its tracking point's, see
 ///     velocity_damping.hpp), predicted positions p = x + dt v;
 ///  4. collision constraints against the deforming volume boundary for the predicted positions;
 ///  5. Gauss-Seidel iterations: stretch constraints (per edge), bending constraints (per edge-adjacent triangle
 ///     pair), one-sided attachments of the outward-facing connections (stiffness 1, constant radius), of the
-///     inward-facing ones (stiffness k_j, radius r_j; SkinSettings::hold_inward) and the collision planes. Stretch and
+///     inward-facing ones (stiffness k_j, radius r_j; SkinSettings::hold_inward), the bound of every inward-facing
+///     one at r_max ("the maximum radius a vertex is allowed to move away from the volume boundary", section 8.2:
+///     stiffness 1, also for slipped skin, whose k_j is 0) and the collision planes. Stretch and
 ///     bending constraints are projected by independent groups (graph colouring) in parallel, so the result does not
 ///     depend on the thread count;
 ///  6. v = (p - x) / dt, x = p.
@@ -71,9 +72,8 @@ struct SkinSettings {
   /// section 8): rest lengths d (1 - s (1 - m)) for an edge of moisture ratio m.
   double skin_shrinkage = 0.15;
   /// Also project the inward-facing tracking constraints in the Gauss-Seidel loop (stiffness k_j, radius r_j),
-  /// as Mueller and Chentanez's attachments, besides their pulling correction. Without it the stretch
-  /// constraints, projected after the pull, undo most of it: on the small arm the skin then buckles by its
-  /// excess length whatever r_max and k_damping are, and Figure 8's sets no longer order the wrinkling.
+  /// as Mueller and Chentanez's attachments, besides their pulling correction (without it the stretch
+  /// constraints, projected after the pull, undo most of it). The bound at r_max is projected either way.
   bool hold_inward = true;
   double bending_stiffness_wet = 0.02;
   double bending_stiffness_dry = 0.1;
@@ -94,9 +94,9 @@ struct SkinModel {
   ConstraintGroups stretch_groups, bending_groups;  ///< independent groups (colouring)
   TrackingConnections tracking;                     ///< #S, from the body model
   /// #S rest offset of each skin vertex from its tracking point (mm, p_i - t_i on the rest body): an
-  /// inward-facing connection holds the vertex within r_j of its anchor t_i + offset_i, so r_max bounds how far
-  /// the skin lifts off the volume. (The offset is not rotated with the volume: the volume's local rotations
-  /// under shrinkage are small.)
+  /// inward-facing connection holds the vertex within r_j (pulled) and r_max (bound) of its anchor t_i +
+  /// offset_i, so r_max bounds how far the skin slides and lifts off the volume. (The offset is not rotated with the
+  /// volume: the volume's local rotations under shrinkage are small.)
   std::vector<Vec3> vertex_tracking_offset;
   std::vector<Tri> boundary_face_nodes;  ///< #F volume-node triples of the boundary faces (outward)
   /// Collision candidates of vertex i: boundary faces vertex_collision_faces[offsets[i] .. offsets[i+1]) (the
@@ -156,6 +156,7 @@ class SkinSimulation {
       m_plane_normals;
   std::vector<double> m_tracking_stiffness, m_tracking_pass_stiffness, m_edge_stiffness, m_edge_rest_length,
       m_pair_stiffness, m_attach_radius;
+  std::vector<double> m_moisture, m_stiffness_moisture;  ///< clamped moisture of this step, of the stiffness above
   std::vector<std::uint8_t> m_outward, m_has_plane, m_pulled;
   // Constraints in colour order: slot s of colour c lies in [offsets[c], offsets[c + 1]).
   std::vector<std::size_t> m_stretch_offsets, m_bending_offsets;

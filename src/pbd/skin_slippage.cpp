@@ -16,9 +16,19 @@ void SlippageLaw::validate(const std::string& source) const {
 }
 
 double tracking_stiffness(double moisture_ratio, const SlippageLaw& law) {
-  if (moisture_ratio < law.zero_below) return 0.0;
+  if (!(moisture_ratio >= law.zero_below)) return 0.0;
   if (moisture_ratio < law.decrease_below) return moisture_ratio * law.initial_stiffness / law.decrease_below;
   return law.initial_stiffness;
+}
+
+double slip_fraction(double moisture_ratio, const SlippageLaw& law) {
+  if (!(moisture_ratio >= law.zero_below)) return 1.0;  // also NaN: treated as dry
+  if (moisture_ratio < law.decrease_below) return 1.0 - moisture_ratio / law.decrease_below;
+  return 0.0;
+}
+
+double slip_radius_mm(double moisture_ratio, const SlippageLaw& law, double r_max_mm) {
+  return slip_fraction(moisture_ratio, law) * r_max_mm;
 }
 
 }  // namespace forensim

@@ -22,12 +22,18 @@ PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double
   return out;
 }
 
-Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness) {
-  return project_tracking(p, t, 1.0, 0.0, radius, stiffness).dp0;
+Vec3 project_tracking_bounded(const Vec3& p, const Vec3& a, double radius, double stiffness, double bound) {
+  const Vec3 d = p - a;
+  const double length = d.norm();
+  double target = length;
+  if (length > radius) target = length - stiffness * (length - radius);
+  target = std::min(target, bound);
+  if (!(length > 0.0) || target >= length) return Vec3::Zero();
+  return ((target - length) / length) * d;
 }
 
-double tracking_radius(double rest_distance, double stiffness, double r_max) {
-  return rest_distance + (1.0 - std::clamp(stiffness, 0.0, 1.0)) * r_max;
+Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness) {
+  return project_tracking(p, t, 1.0, 0.0, radius, stiffness).dp0;
 }
 
 }  // namespace forensim

@@ -6,9 +6,9 @@
 ///
 /// Two uses (section 8.2): an outward-facing connection (the vertex has gone under the boundary) is projected
 /// as a one-sided attachment with stiffness 1 and a constant radius; an inward-facing one gives a pulling
-/// correction (eq. 34) that is added to the skin velocity before damping, with the radius r_j = (1 - k_j) r_max
-/// of eq. 33. The kernels take both points' inverse masses so that they are the general two-body constraint;
-/// the skin passes 0 for the tracking point, which the volume moves.
+/// correction (eq. 34) that is added to the skin velocity before damping, with the radius r_j of eq. 33
+/// (skin_slippage.hpp). The kernels take both points' inverse masses so that they are the general two-body
+/// constraint; the skin passes 0 for the tracking point, which the volume moves.
 
 #include "core/types.hpp"
 #include "pbd/stretch_constraint.hpp"
@@ -23,13 +23,13 @@ double tracking_value(const Vec3& p, const Vec3& t, double radius);
 /// [0, 1]. Conserves linear momentum (m_p dp + m_t dt = 0).
 PairCorrection project_tracking(const Vec3& p, const Vec3& t, double w_p, double w_t, double radius, double stiffness);
 
+/// The inward-facing connection of a skin vertex p to its fixed anchor a in one pass (w_t = 0): p moves towards a
+/// to |p - a| - k C with C = |p - a| - radius when C > 0 (project_tracking), and then no farther than `bound`
+/// (>= 0, stiffness 1) from a. Returns p's correction.
+Vec3 project_tracking_bounded(const Vec3& p, const Vec3& a, double radius, double stiffness, double bound);
+
 /// The pulling correction of eq. 34 for a skin vertex whose tracking point does not move (w_t = 0):
 /// -k C n when |t - p| > r, else zero; the caller adds it to the velocity (divided by the time step).
 Vec3 tracking_pull(const Vec3& p, const Vec3& t, double radius, double stiffness);
-
-/// Radius of an inward-facing tracking constraint (eq. 33): rest_distance + (1 - k_j) r_max. The paper's skin
-/// starts on the volume boundary; forensim's skin is meshed apart from it and starts rest_distance l_i away
-/// (Figure 1), so the radius is measured beyond l_i and the rest state satisfies every constraint.
-double tracking_radius(double rest_distance, double stiffness, double r_max);
 
 }  // namespace forensim

@@ -11,16 +11,13 @@
 
 namespace forensim {
 
-WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
-                               int smoothing_steps, const std::vector<std::uint8_t>& vertex_mask) {
-  const std::size_t n = positions.size();
-  require_input(vertex_mask.empty() || vertex_mask.size() == n, "wrinkle measure", "vertex mask",
-                "has " + std::to_string(vertex_mask.size()) + " entries for " + std::to_string(n) + " vertices");
-  require_input(smoothing_steps >= 0, "wrinkle measure", "smoothing steps", "must be non-negative");
-  auto in = [&](Index v) { return vertex_mask.empty() || vertex_mask[static_cast<std::size_t>(v)] != 0; };
-  const BendingConstraints pairs = make_bending_constraints(positions, triangles, "wrinkle measure mesh");
-  const std::vector<std::array<Index, 2>> edges = unique_edges(triangles);
+namespace {
 
+/// `positions` after `steps` Taubin steps (lambda 0.5, mu -0.53) of the uniform Laplacian over the edges of
+/// `triangles`.
+std::vector<Vec3> taubin_smoothed(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles, int steps) {
+  const std::size_t n = positions.size();
+  const std::vector<std::array<Index, 2>> edges = unique_edges(triangles);
   // Uniform-Laplacian neighbourhoods (CSR).
   std::vector<Index> offsets(n + 1, 0), neighbours;
   for (const auto& e : edges) {
@@ -49,10 +46,31 @@ WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::ve
     });
     smooth.swap(next);
   };
-  for (int s = 0; s < smoothing_steps; ++s) {
+  for (int s = 0; s < steps; ++s) {
     pass(0.5);
     pass(-0.53);
   }
+  return smooth;
+}
+
+void check_indices(const std::vector<Tri>& triangles, std::size_t n, const std::string& source) {
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (Index v : triangles[t])
+      require_input(v >= 0 && static_cast<std::size_t>(v) < n, source, "triangle " + std::to_string(t),
+                    "has vertex " + std::to_string(v) + " outside the " + std::to_string(n) + " vertices");
+}
+
+}  // namespace
+
+WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
+                               int smoothing_steps, const std::vector<std::uint8_t>& vertex_mask) {
+  const std::size_t n = positions.size();
+  require_input(vertex_mask.empty() || vertex_mask.size() == n, "wrinkle measure", "vertex mask",
+                "has " + std::to_string(vertex_mask.size()) + " entries for " + std::to_string(n) + " vertices");
+  require_input(smoothing_steps >= 0, "wrinkle measure", "smoothing steps", "must be non-negative");
+  auto in = [&](Index v) { return vertex_mask.empty() || vertex_mask[static_cast<std::size_t>(v)] != 0; };
+  const BendingConstraints pairs = make_bending_constraints(positions, triangles, "wrinkle measure mesh");
+  const std::vector<Vec3> smooth = taubin_smoothed(positions, triangles, smoothing_steps);
   WrinkleMeasure out;
   double sum = 0.0;
   std::size_t count = 0;
@@ -80,18 +98,63 @@ WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::ve
   return out;
 }
 
-double wrinkle_height_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+WrinkleSize wrinkle_size(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
                          const std::vector<Tri>& triangles, int smoothing_steps,
                          const std::vector<std::uint8_t>& vertex_mask) {
-  require_input(reference.size() == positions.size(), "wrinkle height", "reference",
-                "has " + std::to_string(reference.size()) + " vertices for " + std::to_string(positions.size()));
+  const std::size_t n = positions.size();
+  const std::string source = "wrinkle size";
+  require_input(reference.size() == n, source, "reference",
+                "has " + std::to_string(reference.size()) + " vertices for " + std::to_string(n));
+  require_input(vertex_mask.empty() || vertex_mask.size() == n, source, "vertex mask",
+                "has " + std::to_string(vertex_mask.size()) + " entries for " + std::to_string(n) + " vertices");
+  require_input(smoothing_steps >= 0, source, "smoothing steps", "must be non-negative");
+  check_indices(triangles, n, source);
+  auto in = [&](Index v) { return vertex_mask.empty() || vertex_mask[static_cast<std::size_t>(v)] != 0; };
   TriMesh glued;
   glued.positions = reference;
   glued.triangles = triangles;
   const std::vector<Vec3> normals = vertex_normals(glued);
-  std::vector<Vec3> lift(positions.size());
-  for (std::size_t i = 0; i < lift.size(); ++i) lift[i] = (positions[i] - reference[i]).dot(normals[i]) * normals[i];
-  return wrinkle_measure(lift, triangles, smoothing_steps, vertex_mask).rms_smooth_distance_mm;
+  std::vector<Vec3> lift(n);
+  for (std::size_t i = 0; i < n; ++i) lift[i] = (positions[i] - reference[i]).dot(normals[i]) * normals[i];
+  const std::vector<Vec3> smooth = taubin_smoothed(lift, triangles, smoothing_steps);
+  std::vector<double> h(n);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 fine = lift[i] - smooth[i];
+    h[i] = fine.dot(normals[i]);
+    if (!in(static_cast<Index>(i))) continue;
+    sum += fine.squaredNorm();
+    ++count;
+  }
+  WrinkleSize out;
+  out.height_mm = count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+  // Integrals of h^2 and |grad h|^2 of the piecewise-linear height over the reference triangles.
+  double h2 = 0.0, g2 = 0.0;
+  for (const Tri& t : triangles) {
+    if (!(in(t[0]) && in(t[1]) && in(t[2]))) continue;
+    const auto a = static_cast<std::size_t>(t[0]), b = static_cast<std::size_t>(t[1]),
+               c = static_cast<std::size_t>(t[2]);
+    const Vec3 normal = (reference[b] - reference[a]).cross(reference[c] - reference[a]);
+    const double twice_area = normal.norm();
+    if (!(twice_area > 0.0)) continue;
+    // grad phi_a = n x (c - b) / 2A and so on, with n the unit normal.
+    const Vec3 gradient = normal.cross(h[a] * (reference[c] - reference[b]) + h[b] * (reference[a] - reference[c]) +
+                                       h[c] * (reference[b] - reference[a])) /
+                          (twice_area * twice_area);
+    const double area = 0.5 * twice_area;
+    g2 += area * gradient.squaredNorm();
+    h2 += area / 6.0 * (h[a] * h[a] + h[b] * h[b] + h[c] * h[c] + h[a] * h[b] + h[b] * h[c] + h[c] * h[a]);
+  }
+  constexpr double two_pi = 6.283185307179586;
+  out.wavelength_mm = g2 > 0.0 ? two_pi * std::sqrt(h2 / g2) : 0.0;
+  return out;
+}
+
+double wrinkle_height_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                         const std::vector<Tri>& triangles, int smoothing_steps,
+                         const std::vector<std::uint8_t>& vertex_mask) {
+  return wrinkle_size(positions, reference, triangles, smoothing_steps, vertex_mask).height_mm;
 }
 
 }  // namespace forensim

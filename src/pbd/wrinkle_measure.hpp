@@ -28,11 +28,31 @@ struct WrinkleMeasure {
 WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles,
                                int smoothing_steps = 10, const std::vector<std::uint8_t>& vertex_mask = {});
 
+/// Size of a skin's wrinkles over a reference skin without them (wrinkle_size below).
+struct WrinkleSize {
+  double height_mm = 0.0;  ///< RMS over the (masked) vertices of the fine lift-off f_i
+  /// Wavelength 2 pi sqrt(int h^2 / int |grad h|^2) of the fine lift-off's height h_i = f_i . n_i (piecewise
+  /// linear over the (masked) reference triangles): the wavelength of a sinusoidal wrinkle many edges long (four
+  /// edges per wavelength read about 10 % short, a fold two edges wide about 20 %), the mean spacing of a random
+  /// one. 0 when there are no wrinkles.
+  double wavelength_mm = 0.0;
+};
+
+/// Wrinkle size of the skin at `positions` (#S) over `reference` (#S, same `triangles`): the fine lift-off f_i is
+/// the skin's displacement along the reference's vertex normals, d_i = ((x_i - g_i) . n_i) n_i, less its
+/// Taubin-smoothed copy (`smoothing_steps` as above), so the skin sliding along the surface does not count, nor
+/// does a smooth lift of a whole region (wavelengths above about 13 edges pass the smoothing; two to five edges,
+/// the folds the skin mesh can form, are removed by it). Throws InputError for mismatched sizes, indices out of
+/// range or a bad mask.
+WrinkleSize wrinkle_size(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                         const std::vector<Tri>& triangles, int smoothing_steps = 10,
+                         const std::vector<std::uint8_t>& vertex_mask = {});
+
 /// Wrinkle height of the skin at `positions` (#S) over `reference` (#S, same triangles), in mm: the skin's
 /// displacement along the reference's vertex normals, d_i = ((x_i - g_i) . n_i) n_i, less its Taubin-smoothed copy
 /// (`smoothing_steps` as above; smoothing is linear, so this is wrinkle_measure(d).rms_smooth_distance_mm): the
-/// skin sliding along the surface does not count, nor does a smooth lift of a whole region. Throws InputError for
-/// mismatched sizes or a bad mask.
+/// skin sliding along the surface does not count, nor does a smooth lift of a whole region: wrinkle_size's
+/// height_mm. Throws InputError for mismatched sizes or a bad mask.
 double wrinkle_height_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
                          const std::vector<Tri>& triangles, int smoothing_steps = 10,
                          const std::vector<std::uint8_t>& vertex_mask = {});

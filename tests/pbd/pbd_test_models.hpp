@@ -28,6 +28,21 @@ inline BodyModel sphere_body() {
   return make_body_model(make_ball_volume(10.0, 6), make_icosphere(Vec3::Zero(), 10.1, 3));
 }
 
+/// A flat sheet in the xy plane: (nx + 1) x (ny + 1) vertices `spacing` mm apart from the origin, two triangles per
+/// cell (normals +z).
+inline TriMesh make_grid_sheet(int nx, int ny, double spacing) {
+  TriMesh sheet;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) sheet.positions.emplace_back(spacing * i, spacing * j, 0.0);
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      sheet.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      sheet.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return sheet;
+}
+
 /// The volume's nodes scaled about the origin by `factor` (a uniformly shrinking ball for factor < 1).
 inline std::vector<Vec3> scaled_nodes(const TetMesh& volume, double factor) {
   std::vector<Vec3> out = volume.positions;

@@ -1,6 +1,7 @@
 // Slow suite: the skin of the small arm body model over a shrinking volume. The flesh shrinks towards the bones
-// while the skin dries from a moisture ratio of 1 to 0.12 (below the slippage thresholds of eq. 35, so the
-// tracking stiffness falls to 0.4 and the radius r_j = (1 - k_j) r_max of eq. 33 opens): every node of the
+// while the skin dries from a moisture ratio of 1 to 0.12 (between the slippage thresholds of eq. 35, so the
+// tracking stiffness falls to 0.4 and the slip radius r_j = (1 - k_j / k_t) r_max of eq. 33 opens to 0.6 r_max):
+// every node of the
 // volume's outer boundary moves towards its closest bone point until the flesh is 30 % as thick (eq. 28 with
 // forensim's default tissue gives fully dried flesh about 20 % of its volume), the displacement smoothed over
 // the boundary so that the closest-point map's creases between bones do not show; the skin is stepped through
@@ -185,11 +186,9 @@ TEST(SlowArmWrinkles, Figure8SetsWrinkleMoreAndSkinClingsToTheBones) {
               mean_bone_distance(a, glued));
   std::vector<Result> results;
   for (int set = 0; set < 3; ++set) results.push_back(run(a, WrinkleControls::figure8(set)));
-  // The wrinkles grow over the sets: set 1 above set 0, set 2 at least 10 % above set 0. (The sets differ by
-  // about 1 % and 13 % on this arm: the outward-facing connections, under the volume's boundary at rest, may move
-  // within their rest distance whatever r_max is, and those make most of the lift-off.)
-  EXPECT_GT(results[1].wrinkle_height_mm, results[0].wrinkle_height_mm);
-  EXPECT_GT(results[2].wrinkle_height_mm, 1.1 * results[0].wrinkle_height_mm);
+  // The wrinkles grow over the sets by at least 1.3 from set to set (measured 0.075, 0.140 and 0.239 mm).
+  EXPECT_GT(results[1].wrinkle_height_mm, 1.3 * results[0].wrinkle_height_mm);
+  EXPECT_GT(results[2].wrinkle_height_mm, 1.3 * results[1].wrinkle_height_mm);
   EXPECT_GT(results[0].wrinkle_height_mm, 0.0);
 
   std::vector<SheetCell> cells;

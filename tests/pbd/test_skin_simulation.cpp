@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "body/tracking.hpp"
@@ -135,42 +136,56 @@ TEST(SkinSimulation, TrackingHoldsTheSkinWithinTheRadius) {
   SkinStepReport report;
   for (int s = 0; s < 150; ++s) report = sim.step(state, nodes, moisture, dt);
   const std::vector<Vec3> t = tracking_points(model.tracking, nodes);
-  const double k = tracking_stiffness(0.2, settings.slippage);
-  ASSERT_GT(k, 0.0);
+  ASSERT_GT(tracking_stiffness(0.2, settings.slippage), 0.0);
+  const double r = slip_radius_mm(0.2, settings.slippage, model.r_max_mm);
+  ASSERT_GT(r, 0.0);
+  ASSERT_LT(r, model.r_max_mm);
   double worst = -INFINITY;
   for (std::size_t i = 0; i < t.size(); ++i)
-    worst = std::max(worst, tracking_value(state.positions[i], t[i],
-                                           tracking_radius(model.tracking.rest_distance[i], k, 0.8 * model.r_max_mm)));
-  EXPECT_LT(worst, 0.02 * model.r_max_mm) << "a skin vertex is farther than r_j from its tracking point";
+    worst = std::max(worst, tracking_value(state.positions[i], t[i] + model.vertex_tracking_offset[i], r));
+  EXPECT_LT(worst, 0.02 * model.r_max_mm) << "a skin vertex is farther than r_j from its anchor";
   EXPECT_LT(report.max_tracking_excess_mm, 0.02 * model.r_max_mm);
   EXPECT_EQ(report.slipped, 0u);
 }
 
-TEST(SkinSimulation, SlippedSkinNoLongerFollowsTheVolume) {
+TEST(SkinSimulation, SlippedSkinSlidesWithinTheMaximumRadius) {
   SkinSettings settings;
-  settings.skin_shrinkage = 0.0;  // the skin keeps its own size
+  settings.skin_shrinkage = 0.0;           // the skin keeps its own size, so the shrinking ball compresses it
+  settings.wrinkle.r_max_relative = 0.02;  // 0.4 mm on the 20 mm ball
   const SkinModel model = make_skin_model(sphere(), settings);
-  auto mean_radius = [](const SkinState& s) {
-    double r = 0.0;
-    for (const Vec3& p : s.positions) r += p.norm();
-    return r / static_cast<double>(s.positions.size());
-  };
-  // Below tau_n every tracking stiffness is zero: the skin keeps its size while the ball shrinks under it.
-  const double dry = 0.5 * model.settings.slippage.zero_below;
-  SkinSimulation sim(model);
-  SkinState slipped = initial_skin_state(model);
-  SkinStepReport report;
   const std::vector<Vec3> nodes = test::scaled_nodes(sphere().volume, 0.8);
-  for (int s = 0; s < 60; ++s) report = sim.step(slipped, nodes, std::vector<double>(model.vertex_count(), dry), dt);
-  EXPECT_EQ(report.slipped, model.vertex_count());
-  EXPECT_EQ(report.pulled, 0u);
-  EXPECT_GT(mean_radius(slipped), 10.0);
-  // Just above tau_n the skin is still attached and follows the volume in.
-  const double attached = 1.01 * model.settings.slippage.zero_below;
+  const std::vector<Vec3> t = tracking_points(model.tracking, nodes);
+  // Distance of each vertex from its anchor (tracking point plus rest offset): max and mean.
+  auto reach = [&](const SkinState& s) {
+    double worst = 0.0, mean = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double d = (s.positions[i] - (t[i] + model.vertex_tracking_offset[i])).norm();
+      worst = std::max(worst, d);
+      mean += d / static_cast<double>(t.size());
+    }
+    return std::pair{worst, mean};
+  };
+  for (double moisture : {0.5 * settings.slippage.zero_below, 0.0}) {
+    // Below tau_n every tracking stiffness is zero: no pull, but the skin stays within r_max of its anchors.
+    SkinSimulation sim(model);
+    SkinState slipped = initial_skin_state(model);
+    SkinStepReport report;
+    for (int s = 0; s < 60; ++s)
+      report = sim.step(slipped, nodes, std::vector<double>(model.vertex_count(), moisture), dt);
+    EXPECT_EQ(report.slipped, model.vertex_count());
+    EXPECT_EQ(report.pulled, 0u);
+    const auto [worst, mean] = reach(slipped);
+    EXPECT_LE(worst, model.r_max_mm * (1.0 + 1e-6) + 1e-9) << moisture;
+    // The compressed skin uses its freedom: on average it sits well away from its anchors.
+    EXPECT_GT(mean, 0.3 * model.r_max_mm) << moisture;
+  }
+  // Wet skin is held at its anchors (r_j = 0, k_j = k_t = 1).
+  SkinSimulation sim(model);
   SkinState held = initial_skin_state(model);
-  for (int s = 0; s < 60; ++s) report = sim.step(held, nodes, std::vector<double>(model.vertex_count(), attached), dt);
+  SkinStepReport report;
+  for (int s = 0; s < 60; ++s) report = sim.step(held, nodes, std::vector<double>(model.vertex_count(), 1.0), dt);
   EXPECT_EQ(report.slipped, 0u);
-  EXPECT_LT(mean_radius(held), 9.5);
+  EXPECT_LT(reach(held).second, 0.05 * model.r_max_mm);
 }
 
 TEST(SkinSimulation, ShrinkingSphereWrinklesWithoutInvertedTriangles) {
@@ -195,6 +210,45 @@ TEST(SkinSimulation, ShrinkingSphereWrinklesWithoutInvertedTriangles) {
     const WrinkleMeasure end = wrinkle_measure(state.positions, model.triangles);
     EXPECT_GT(end.mean_abs_curvature_per_mm, 0.99 / mean_radius) << "skin shrinkage " << shrinkage;
   }
+}
+
+TEST(SkinSimulation, Figure8SetsOrderTheWrinklesOfCompressedDriedSkin) {
+  // The ball shrinks to 0.6 of its size while the skin dries below tau_n in the first third (and keeps its own
+  // size: no skin shrinkage), so most of the shrinkage compresses slipped skin, which folds within r_max of its
+  // anchors, as the flesh of the dried arm shrinks under its skin. Figure 8's sets (r_max against the edge length
+  // as on the small arm, there 0.4 mm over 5 mm edges for set 0: five times the sets' relative r_max on this
+  // 20 mm ball) order the wrinkles' height over the skin glued to the shrunk ball.
+  constexpr int steps = 90;
+  std::vector<WrinkleSize> sizes;
+  for (int set = 0; set < 3; ++set) {
+    SkinSettings settings;
+    settings.skin_shrinkage = 0.0;
+    settings.wrinkle = WrinkleControls::figure8(set);
+    settings.wrinkle.r_max_relative *= 5.0;
+    const SkinModel model = make_skin_model(sphere(), settings);
+    SkinSimulation sim(model);
+    SkinState state = initial_skin_state(model);
+    std::vector<Vec3> nodes;
+    for (int s = 1; s <= steps; ++s) {
+      const double f = static_cast<double>(s) / steps;
+      nodes = test::scaled_nodes(sphere().volume, 1.0 - 0.4 * f);
+      sim.step(state, nodes, std::vector<double>(model.vertex_count(), std::max(0.05, 1.0 - 3.0 * f)), dt);
+    }
+    EXPECT_EQ(inverted_triangles(state, model), 0u) << "set " << set;
+    std::vector<Vec3> glued = tracking_points(model.tracking, nodes);
+    for (std::size_t i = 0; i < glued.size(); ++i) glued[i] += model.vertex_tracking_offset[i];
+    sizes.push_back(wrinkle_size(state.positions, glued, model.triangles));
+    std::printf("set %d (r_max %.3f mm): wrinkle height %.4f mm, wavelength %.2f mm (mean edge %.2f mm)\n", set,
+                model.r_max_mm, sizes.back().height_mm, sizes.back().wavelength_mm, model.mean_edge_mm);
+    // Folds along the skin's edges (section 9.3: "wrinkles form along triangles edges"), not a smooth lift.
+    EXPECT_GT(sizes.back().wavelength_mm, 0.5 * model.mean_edge_mm) << "set " << set;
+    EXPECT_LT(sizes.back().wavelength_mm, 5.0 * model.mean_edge_mm) << "set " << set;
+    // No fold is higher than the slip radius allows.
+    EXPECT_LT(sizes.back().height_mm, model.r_max_mm) << "set " << set;
+  }
+  EXPECT_GT(sizes[0].height_mm, 0.0);
+  EXPECT_GT(sizes[1].height_mm, 1.3 * sizes[0].height_mm);
+  EXPECT_GT(sizes[2].height_mm, 1.3 * sizes[1].height_mm);
 }
 
 TEST(SkinSimulation, SameResultAtAnyThreadCount) {

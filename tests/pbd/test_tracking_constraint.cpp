@@ -41,9 +41,24 @@ TEST(TrackingConstraint, PullPointsToTheTrackingPointBeyondTheRadius) {
   EXPECT_EQ(tracking_pull(Vec3(0, 0.5, 0), t, 1.0, 0.5), Vec3::Zero());
 }
 
-TEST(TrackingConstraint, RadiusGrowsAsTheStiffnessFalls) {
-  // eq. 33, measured beyond the rest distance l_i.
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 1.0, 2.0), 0.25);
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.5, 2.0), 1.25);
-  EXPECT_DOUBLE_EQ(tracking_radius(0.25, 0.0, 2.0), 2.25);
+TEST(TrackingConstraint, BoundedProjectionIsTheSoftProjectionCappedAtTheBound) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  const Vec3 a(0.1, -0.2, 0.3);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    const double radius = 0.4, bound = 1.2, k = 0.3;
+    const Vec3 dp = project_tracking_bounded(p, a, radius, k, bound);
+    // The soft projection (project_tracking), then the hard one at the bound.
+    Vec3 q = p + project_tracking(p, a, 1.0, 0.0, radius, k).dp0;
+    q += project_tracking(q, a, 1.0, 0.0, bound, 1.0).dp0;
+    EXPECT_LT((p + dp - q).norm(), 1e-12);
+    EXPECT_LE((p + dp - a).norm(), bound + 1e-12);
+    // Along the line to the anchor only.
+    EXPECT_LT(dp.cross(p - a).norm(), 1e-12);
+  }
+  // Within the radius nothing moves; a zero stiffness leaves only the bound.
+  EXPECT_EQ(project_tracking_bounded(a + Vec3(0.3, 0, 0), a, 0.4, 1.0, 1.2), Vec3::Zero());
+  EXPECT_NEAR((a + Vec3(0, 2.0, 0) + project_tracking_bounded(a + Vec3(0, 2.0, 0), a, 0.4, 0.0, 1.2) - a).norm(), 1.2,
+              1e-12);
 }

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "geometry/primitives.hpp"
+#include "pbd_test_models.hpp"
 
 using namespace forensim;
 
@@ -57,4 +58,65 @@ TEST(WrinkleMeasure, MaskSelectsAPart) {
   const WrinkleMeasure b = wrinkle_measure(p, sphere.triangles, 10, bottom);
   EXPECT_GT(t.mean_abs_curvature_per_mm, 1.5 * b.mean_abs_curvature_per_mm);
   EXPECT_THROW(wrinkle_measure(p, sphere.triangles, 10, std::vector<std::uint8_t>(3, 1)), InputError);
+}
+
+namespace {
+
+/// The sheet lifted by amplitude cos(2 pi x / wavelength) along +z.
+std::vector<Vec3> waved(const TriMesh& sheet, double amplitude, double wavelength) {
+  std::vector<Vec3> out = sheet.positions;
+  for (Vec3& p : out) p.z() += amplitude * std::cos(6.283185307179586 * p.x() / wavelength);
+  return out;
+}
+
+/// Vertices of the (nx + 1) x (ny + 1) sheet at least `margin` cells from its border.
+std::vector<std::uint8_t> interior(int nx, int ny, int margin) {
+  std::vector<std::uint8_t> mask;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      mask.push_back(i >= margin && i <= nx - margin && j >= margin && j <= ny - margin ? 1 : 0);
+  return mask;
+}
+
+}  // namespace
+
+TEST(WrinkleSize, HeightAndWavelengthOfASinusoidalWrinkle) {
+  // 60 mm x 30 mm, 0.5 mm cells (wavelengths of 4 to 20 cells); measured away from the border, where a plane wave is an
+  // eigenvector of the uniform Laplacian (eigenvalue k = 2/3 (1 - cos theta) on this grid, theta the phase step per
+  // cell), so the fine part left by the Taubin steps is the wave times 1 - ((1 - 0.5 k) (1 + 0.53 k))^10.
+  const TriMesh sheet = test::make_grid_sheet(120, 60, 0.5);
+  const std::vector<std::uint8_t> mask = interior(120, 60, 25);
+  const double amplitude = 0.3;
+  for (double wavelength : {2.0, 5.0, 10.0}) {
+    const std::vector<Vec3> x = waved(sheet, amplitude, wavelength);
+    const WrinkleSize w = wrinkle_size(x, sheet.positions, sheet.triangles, 10, mask);
+    const double k = 2.0 / 3.0 * (1.0 - std::cos(6.283185307179586 * 0.5 / wavelength));
+    const double kept = std::abs(1.0 - std::pow((1.0 - 0.5 * k) * (1.0 + 0.53 * k), 10));  // < 0: amplified
+    EXPECT_NEAR(w.height_mm, kept * amplitude / std::sqrt(2.0), 0.03 * kept * amplitude) << wavelength;
+    // The wavelength of the piecewise-linear surface: four cells per wavelength read about 10 % short.
+    EXPECT_NEAR(w.wavelength_mm, wavelength, (wavelength < 3.0 ? 0.12 : 0.03) * wavelength);
+    // Twice the amplitude: twice the height, the same wavelength.
+    const WrinkleSize twice =
+        wrinkle_size(waved(sheet, 2.0 * amplitude, wavelength), sheet.positions, sheet.triangles, 10, mask);
+    EXPECT_NEAR(twice.height_mm, 2.0 * w.height_mm, 1e-9);
+    EXPECT_NEAR(twice.wavelength_mm, w.wavelength_mm, 1e-9);
+  }
+  // A flat skin has no wrinkles; one slid along the surface neither.
+  std::vector<Vec3> slid = sheet.positions;
+  for (Vec3& p : slid) p.x() += 0.2;
+  const WrinkleSize none = wrinkle_size(slid, sheet.positions, sheet.triangles);
+  EXPECT_EQ(none.height_mm, 0.0);
+  EXPECT_EQ(none.wavelength_mm, 0.0);
+}
+
+TEST(WrinkleSize, SmoothingKeepsFoldsAndDropsTheLiftOfAWholeRegion) {
+  const TriMesh sheet = test::make_grid_sheet(120, 60, 0.5);
+  const std::vector<std::uint8_t> mask = interior(120, 60, 25);
+  // Folds two cells apart count almost fully; a lift 60 cells long is the shape of the body, not a wrinkle.
+  const WrinkleSize fold = wrinkle_size(waved(sheet, 0.3, 1.0), sheet.positions, sheet.triangles, 10, mask);
+  const WrinkleSize lift = wrinkle_size(waved(sheet, 0.3, 30.0), sheet.positions, sheet.triangles, 10, mask);
+  EXPECT_GT(fold.height_mm, 0.95 * 0.3);  // the alternating fold's RMS is its amplitude
+  EXPECT_LT(lift.height_mm, 0.01 * fold.height_mm);
+  EXPECT_THROW(wrinkle_size(sheet.positions, {Vec3::Zero()}, sheet.triangles), InputError);
+  EXPECT_THROW(wrinkle_size(sheet.positions, sheet.positions, {Tri{0, 1, 100000}}), InputError);
 }
