@@ -5,6 +5,8 @@
 // depth vectors, the skull/skin violations, and a provenance record. Everything is computed before the output
 // folder is created, so bad input writes nothing.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -19,6 +21,7 @@
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/reconstruction.hpp"
 #include "craniofacial/reconstruction_uncertainty.hpp"
+#include "craniofacial/skull_completion.hpp"
 #include "craniofacial/skull_input.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -194,9 +197,24 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   }
   timings.add("skull", watch.lap());
   std::optional<LandmarkDetection> detection;
+  std::optional<SkullCompletion> completion;
   if (landmark_mode == "auto") {
-    detection = detect_template_landmarks(head, skull.mesh);
+    LandmarkDetectionOptions detection_options;
+    detection_options.registration.similarity.target_view = skull.field_of_view;
+    detection = detect_template_landmarks(head, skull.mesh, detection_options);
     timings.add("landmark detection", watch.lap());
+    std::size_t unseen = 0;
+    for (const DetectedLandmark& d : detection->details) unseen += d.in_view ? 0 : 1;
+    if (unseen > 0) {
+      // Landmarks the scan did not see lie on the registered template: its missing part completes the skull.
+      completion = complete_skull(skull.mesh, skull.field_of_view, head.skull, detection->registration);
+      skull.mesh = completion->mesh;
+      skull.notes.push_back(fmt::format(
+          "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
+          "triangles of the cut dropped)",
+          unseen, completion->reference_triangles, completion->cap_triangles));
+      timings.add("skull completion", watch.lap());
+    }
   }
   const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks
                                          : detection    ? detection->landmarks
@@ -249,7 +267,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     normal_map = std::make_shared<Image>(std::move(maps.normal));
     timings.add("skin maps", watch.lap());
   }
-  const ViewAxes axes = axes_from_name(job.axes);
+  // "auto": the detected head frame (superior up, the face to the front) where landmarks were detected.
+  ViewAxes axes = axes_from_name(job.axes == "auto" ? "lps" : job.axes);
+  if (job.axes == "auto" && detection) axes = ViewAxes{detection->frame.axes.col(2), -detection->frame.axes.col(1)};
   std::vector<std::pair<std::string, std::string>> pictures;  // file, PNG bytes
   if (job.picture_size > 0) {
     RenderSettings settings;
@@ -366,7 +386,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"residual_mm", d.residual_mm},
                          {"sharpness", d.sharpness},
                          {"symmetry_error_mm", d.symmetry_error_mm},
-                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()}});
+                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()},
+                         {"in_view", d.in_view}});
     }
     const SkullRegistration& reg = detection->registration;
     provenance["landmarks"]["detection"] = {{"reference", "template skull"},
@@ -492,8 +513,10 @@ const RegisterCommand reconstruct_command{
                     "Leave out the interpolated cranium and mandible landmarks");
       sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
           ->check(CLI::IsMember({"full", "coarse"}));
-      sub->add_option("--axes", j.axes, "Frame of the skull for the pictures: lps or yup")
-          ->check(CLI::IsMember({"lps", "yup"}));
+      sub->add_option("--axes", j.axes,
+                      "Frame of the skull for the pictures: lps, yup or auto (the detected head frame with "
+                      "--landmarks auto, else lps)")
+          ->check(CLI::IsMember({"lps", "yup", "auto"}));
       sub->add_option("--seed", j.seed, "Seed of the procedural skin maps");
       sub->add_option("--texture-size", j.texture_size, "Skin map resolution (0 = none)")->check(CLI::Range(0, 8192));
       sub->add_option("--picture-size", j.picture_size, "Pixels per rendered view (0 = no renders)")

@@ -19,7 +19,8 @@
 ///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
-///   axes             "lps" (default) or "yup": the skull's frame, for the pictures
+///   axes             "lps" (default), "yup" or "auto" (the detected head frame with automatic landmarks):
+///                    the skull's frame, for the pictures
 ///   seed             seed of the procedural skin maps
 ///   texture_size     skin map resolution (0 = no maps)
 ///   picture_size, samples  renders (picture_size 0 = no renders)
