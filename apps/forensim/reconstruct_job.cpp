@@ -91,6 +91,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
     j.has_guides = any_guide(j.guides);
   }
   j.interpolated_landmarks = root.get<bool>("interpolated_landmarks", defaults.interpolated_landmarks);
+  j.evaluate = root.get<bool>("evaluate", defaults.evaluate);
   j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
   j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup", "auto"});
   j.seed = static_cast<std::uint64_t>(

@@ -31,6 +31,9 @@
 ///   expressions      expression presets written as the GLB's morph targets (shape keys) and drawn in
 ///                    expressions.png: a list of names from neutral, smile, frown, worried, surprise (default
 ///                    ["smile", "frown", "surprise"]; [] for none)
+///   evaluate         false (default); true: the CT's real face (its skin iso-surface) measured against the
+///                    reconstruction over the face region (face_evaluation.hpp): evaluation.json, evaluation.png,
+///                    evaluation_face.vtu; the skull must come from a CT that holds the face
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
@@ -66,6 +69,7 @@ struct ReconstructJob {
   int uncertainty_samples = 0;  ///< 0: no ensemble
   std::optional<std::uint64_t> uncertainty_seed;
   std::vector<std::string> expressions = {"smile", "frown", "surprise"};
+  bool evaluate = false;
 };
 
 /// Reads the guides object (FaceGuides fields: vectors as [x, y, z] in mm, the rest numbers). Throws JobError

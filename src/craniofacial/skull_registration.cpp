@@ -328,6 +328,13 @@ std::vector<Vec3> target_samples(const TriMesh& target, const TargetSurface& sur
   return samples;
 }
 
+SymmetryPlaneOptions symmetry_options() {
+  SymmetryPlaneOptions o;
+  o.max_iterations = 25;
+  o.max_samples = 1500;
+  return o;
+}
+
 /// Proper rotation taking unit vector a onto unit vector b.
 Mat3 rotation_between(const Vec3& a, const Vec3& b) {
   return Eigen::Quaterniond::FromTwoVectors(a, b).toRotationMatrix();
@@ -339,9 +346,7 @@ SymmetryPlaneFit fit_target_symmetry(const TriMesh& target) {
   check_mesh(target, "target skull");
   const Moments mt = moments(target.positions);
   const Eigen::SelfAdjointEigenSolver<Mat3> et(mt.covariance);
-  SymmetryPlaneOptions o;
-  o.max_iterations = 25;
-  o.max_samples = 1500;
+  const SymmetryPlaneOptions o = symmetry_options();
   SymmetryPlaneFit best;
   best.rms_mm = std::numeric_limits<double>::infinity();
   std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
@@ -378,10 +383,13 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const double start_scale = options.scale_prior_sd > 0.0 ? 1.0 : moment_scale;
 
   std::optional<Plane> plane;
+  Plane reference_plane;
   std::vector<Mat3> rotations;
   if (options.reference_midsagittal) {
     plane = fit_target_symmetry(target).plane;
-    const Vec3 nr = options.reference_midsagittal->normal.normalized();
+    // The reference's plane refined by the same fit, so that both are the planes of best symmetry.
+    reference_plane = fit_symmetry_plane(reference, *options.reference_midsagittal, symmetry_options()).plane;
+    const Vec3 nr = reference_plane.normal;
     for (double sign : {1.0, -1.0}) {
       const Mat3 base = rotation_between(nr, sign * plane->normal);
       for (int k = 0; k < 12; ++k) {
@@ -415,7 +423,7 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     s.translation = mt.centroid - start_scale * (r * mr.centroid);
     if (plane) {
       // The reference's plane onto the target's.
-      s.translation -= plane->signed_distance(s.apply(options.reference_midsagittal->point)) * plane->normal;
+      s.translation -= plane->signed_distance(s.apply(reference_plane.point)) * plane->normal;
     }
     starts.push_back(s);
   }
@@ -444,6 +452,7 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const TwoWay problem{surface, reference_surface, samples, targets};
   IcpResult fine =
       scaled_icp(problem, best.similarity, size, options, options.max_iterations, plane ? &*plane : nullptr);
+
   if (samples_out) *samples_out = samples;
   if (target_plane_out) *target_plane_out = plane;
   return fine;

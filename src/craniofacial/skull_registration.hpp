@@ -64,11 +64,11 @@ struct SimilarityRegistrationOptions {
   /// Where the target has data (a CT's lattice; unbounded for meshes): reference samples outside it, or whose
   /// closest target point lies on a cap, have no pair. Used by the non-rigid stage too.
   ScanFieldOfView target_view;
-  /// The reference's plane of bilateral symmetry. When given, the target's is fitted (fit_symmetry_plane from
-  /// the planes through its centroid square to the coordinate and principal axes, the lowest RMS kept) and the
-  /// similarity maps the one onto the other: only the turn about the plane's normal, the scale and the shift
-  /// within the plane stay free, started every 30 degrees of the turn, both ways round. This keeps a reference
-  /// of a different shape (the template phantom) from settling turned sideways on a partial skull.
+  /// The reference's plane of bilateral symmetry (refined by fit_symmetry_plane). When given, the target's is fitted
+  /// (fit_symmetry_plane from the planes through its centroid square to the coordinate and principal axes, the lowest
+  /// RMS kept) and the similarity maps the one onto the other: only the turn about the plane's normal, the scale and
+  /// the shift within the plane stay free, started every 30 degrees of the turn, both ways round. This keeps a
+  /// reference of a different shape (the template phantom) from settling turned sideways on a partial skull.
   std::optional<Plane> reference_midsagittal;
 };
 
