@@ -330,7 +330,7 @@ std::vector<Vec3> target_samples(const TriMesh& target, const TargetSurface& sur
 
 SymmetryPlaneOptions symmetry_options() {
   SymmetryPlaneOptions o;
-  o.max_iterations = 25;
+  o.max_iterations = 50;
   o.max_samples = 1500;
   return o;
 }
@@ -450,6 +450,18 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     if (r.rms < best.rms) best = r;  // strict: the earliest wins ties
   }
   const TwoWay problem{surface, reference_surface, samples, targets};
+  if (plane) {
+    // The target's plane refitted from the registered reference's (the first fit started from the axes), and
+    // the similarity turned and shifted onto it.
+    const Similarity& b = best.similarity;
+    const Vec3 mapped_normal = b.rotation * reference_plane.normal;
+    plane = fit_symmetry_plane(target, Plane{b.apply(reference_plane.point), mapped_normal}, symmetry_options()).plane;
+    const Vec3 on = b.apply(reference_plane.point);
+    const Mat3 turn = rotation_between(mapped_normal, plane->normal);
+    best.similarity.rotation = turn * b.rotation;
+    best.similarity.translation = turn * (b.translation - on) + on;
+    best.similarity.translation -= plane->signed_distance(best.similarity.apply(reference_plane.point)) * plane->normal;
+  }
   IcpResult fine =
       scaled_icp(problem, best.similarity, size, options, options.max_iterations, plane ? &*plane : nullptr);
 

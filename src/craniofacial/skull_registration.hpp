@@ -52,7 +52,7 @@ struct SimilarityRegistrationOptions {
   int max_iterations = 80;  ///< Gauss-Newton iterations per start
   double trim_fraction = 0.1;         ///< share of worst pairs dropped each iteration (missing parts, damage)
   double point_weight = 0.1;          ///< weight of the point-to-point term beside point-to-plane (stabilises sliding)
-  double tolerance = 1e-5;            ///< stop when the update (rotation rad, log scale, translation / size) is below
+  double tolerance = 1e-7;            ///< stop when the update (rotation rad, log scale, translation / size) is below
   bool principal_axis_starts = true;  ///< also start from the four proper principal-axis alignments
   bool quarter_turn_starts = true;    ///< also start from the 23 other axis-aligned proper rotations
   /// Weight of the target -> reference pairs beside the reference -> target ones (0: one way only).
