@@ -400,11 +400,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       bar.title = "real - reconstruction";
       bar.unit = "mm";
       std::vector<SheetCell> heat_cells;
-      heat_cells.push_back({render_view(heat, settings, "front", axes),
-                            fmt::format("mean {:.2f} mm, RMS {:.2f} mm", evaluation->mean_abs_mm, evaluation->rms_mm)});
-      heat_cells.push_back({render_view(heat, settings, "left", axes),
-                            fmt::format("signed {:+.2f} mm, {:.0f} % within {:g} mm", evaluation->signed_mean_mm,
-                                        100.0 * evaluation->within_share, evaluation->within_mm)});
+      heat_cells.push_back({render_view(heat, settings, "front", axes), "front"});
+      heat_cells.push_back({render_view(heat, settings, "left", axes), "side"});
+      // The figures are in evaluation.json (a title long enough to hold them would be cut at small sizes).
       Image sheet = make_sheet(heat_cells, 2, "real face vs reconstruction");
       pictures.emplace_back("evaluation.png", encode_png(with_colour_bar(sheet, bar)));
     }
