@@ -5,6 +5,8 @@
 // depth vectors, the skull/skin violations, and a provenance record. Everything is computed before the output
 // folder is created, so bad input writes nothing.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -15,10 +17,12 @@
 #include "core/job.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
+#include "craniofacial/face_evaluation.hpp"
 #include "craniofacial/face_expression.hpp"
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/reconstruction.hpp"
 #include "craniofacial/reconstruction_uncertainty.hpp"
+#include "craniofacial/skull_completion.hpp"
 #include "craniofacial/skull_input.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -35,6 +39,7 @@
 #include "render/renderer.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/vtu_writer.hpp"
+#include "volume/volume_reader.hpp"
 
 namespace forensim::cli {
 namespace {
@@ -45,6 +50,7 @@ struct ReconstructArgs {
   std::string guides_file;
   std::string out;
   bool no_interpolated = false;
+  bool evaluate = false;
   std::string expressions;  ///< --expressions: comma-separated presets, or "none"
 };
 
@@ -112,6 +118,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
   if (typed("--expressions")) job.expressions = split_expression_list(a.expressions);
   if (a.no_interpolated) job.interpolated_landmarks = false;
+  if (a.evaluate) job.evaluate = true;
   nlohmann::json guides_record = nullptr;
   if (!a.guides_file.empty()) {
     JobDocument guides_doc = JobDocument::load(a.guides_file);
@@ -129,6 +136,13 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
               facts["given_pairs"].get<int>(), facts["interpolated_pairs"].get<int>(),
               facts["violations_before"].get<int>(), facts["violations_after"].get<int>(),
               format_seconds(facts["seconds_total"].get<double>()).c_str());
+  if (facts.contains("evaluation_rms_mm")) {
+    std::printf(
+        "evaluation against the real face: mean %.2f mm, RMS %.2f mm, signed mean %+.2f mm, %.1f %% within "
+        "2.5 mm\n",
+        facts["evaluation_mean_abs_mm"].get<double>(), facts["evaluation_rms_mm"].get<double>(),
+        facts["evaluation_signed_mean_mm"].get<double>(), facts["evaluation_within_percent"].get<double>());
+  }
   return 0;
 }
 
@@ -171,6 +185,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                      "only the built-in skull and the CT phantom carry the template's landmarks; give a .mrk.json or "
                      "CSV file, or 'auto' to detect them");
   }
+  if (job.evaluate && (builtin_skull || (job.ct.empty() && !is_volume_path(job.skull)))) {
+    throw InputError("--evaluate", builtin_skull ? "built-in skull" : job.skull,
+                     "the evaluation needs a CT that holds the face (its skin); a mesh skull has none");
+  }
   std::optional<LandmarkSet> file_landmarks;
   if (landmark_mode != "template" && landmark_mode != "auto") file_landmarks = read_landmarks(landmark_mode);
   timings.add("inputs", watch.lap());
@@ -179,6 +197,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   timings.add("template", watch.lap());
 
   Skull skull;
+  std::optional<ScalarGrid> volume;
   SkullInputOptions skull_options;
   skull_options.mesh_units.unit = job.unit;
   skull_options.mesh_units.scale = job.mesh_scale;
@@ -187,16 +206,40 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull.mesh = head.skull;
     skull.source = "built-in template skull (head phantom)";
     skull.kind = "builtin";
-  } else if (phantom_ct) {
-    skull = skull_from_volume(make_ct_head_phantom(), "built-in CT head phantom", skull_options);
   } else {
-    skull = load_skull(job.ct.empty() ? job.skull : job.ct, skull_options);
+    // A CT is kept: the evaluation takes the real face from it.
+    const std::string path = job.ct.empty() ? job.skull : job.ct;
+    if (phantom_ct) {
+      volume = make_ct_head_phantom();
+      skull = skull_from_volume(*volume, "built-in CT head phantom", skull_options);
+    } else if (is_volume_path(path)) {
+      if (!std::filesystem::exists(path)) throw IoError(path, "does not exist");
+      volume = read_volume(path);
+      skull = skull_from_volume(*volume, path, skull_options);
+    } else {
+      skull = load_skull(path, skull_options);
+    }
   }
   timings.add("skull", watch.lap());
   std::optional<LandmarkDetection> detection;
+  std::optional<SkullCompletion> completion;
   if (landmark_mode == "auto") {
-    detection = detect_template_landmarks(head, skull.mesh);
+    LandmarkDetectionOptions detection_options;
+    detection_options.registration.similarity.target_view = skull.field_of_view;
+    detection = detect_template_landmarks(head, skull.mesh, detection_options);
     timings.add("landmark detection", watch.lap());
+    std::size_t unseen = 0;
+    for (const DetectedLandmark& d : detection->details) unseen += d.in_view ? 0 : 1;
+    if (unseen > 0) {
+      // Landmarks the scan did not see lie on the registered template: its missing part completes the skull.
+      completion = complete_skull(skull.mesh, skull.field_of_view, head.skull, detection->registration);
+      skull.mesh = completion->mesh;
+      skull.notes.push_back(fmt::format(
+          "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
+          "triangles of the cut dropped)",
+          unseen, completion->reference_triangles, completion->cap_triangles));
+      timings.add("skull completion", watch.lap());
+    }
   }
   const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks
                                          : detection    ? detection->landmarks
@@ -226,6 +269,43 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     timings.add("uncertainty", watch.lap());
   }
 
+  // The evaluation: the CT's real face against the reconstruction over the face region.
+  std::optional<FaceEvaluation> evaluation;
+  nlohmann::json evaluation_record;
+  if (job.evaluate) {
+    double skin_iso = 0.0;
+    const TriMesh real_skin = real_face_surface(*volume, skull.source, {}, &skin_iso);
+    // The frame of the region: detected, the template's (its own landmarks), or from the file's Frankfort landmarks.
+    const HeadFrame frame = detection                     ? detection->frame
+                            : landmark_mode == "template" ? template_head_frame(head)
+                                                          : head_frame_from_skull(skull.mesh, skull_landmarks_in);
+    LandmarkSet used("skull");
+    for (const DepthVector& v : result.depth_vectors.vectors) used.add({v.bone_landmark, v.bone_mm, v.source, 1.0});
+    const FaceRegionOptions region_options;
+    const FaceRegion region = face_region(used, frame, region_options);
+    evaluation = evaluate_face(real_skin, result.skin, region, skull.field_of_view);
+    evaluation_record = evaluation->to_json();
+    evaluation_record["real_face"] = {{"source", skull.source},
+                                      {"skin_iso", skin_iso},
+                                      {"triangles", real_skin.triangle_count()},
+                                      {"measured_triangles", evaluation->face.triangle_count()}};
+    evaluation_record["region"] = {
+        {"definition",
+         "in front of the coronal plane through the gonia, below the Frankfort-parallel plane " +
+             fmt::format("{:g}", region_options.forehead_mm) +
+             " mm above glabella, above the mandibular plane (menton, gonia) lowered by " +
+             fmt::format("{:g}", region_options.chin_margin_mm) +
+             " mm; exterior skin only (a ray along the normal leaves the head), the scan's cut caps left out"},
+        {"frame", detection                     ? "detected head frame"
+                  : landmark_mode == "template" ? "template head frame"
+                                                : "head frame of the landmark file (Frankfort, midsagittal)"}};
+    evaluation_record["method"] =
+        "signed distance from each real-face vertex to the closest point of the reconstructed skin (positive: "
+        "the real face outside the reconstruction), weighted by a third of its triangles' area";
+    evaluation_record["literature_within_2_5mm_percent"] = {54, 77};
+    timings.add("evaluation", watch.lap());
+  }
+
   // Expressions (paper section 5): the muscles contracted under the reconstructed skin, over the target skull;
   // each preset becomes a morph target of the head in the GLB.
   std::vector<MorphTarget> expression_targets;
@@ -249,7 +329,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     normal_map = std::make_shared<Image>(std::move(maps.normal));
     timings.add("skin maps", watch.lap());
   }
-  const ViewAxes axes = axes_from_name(job.axes);
+  // "auto": the detected head frame (superior up, the face to the front) where landmarks were detected.
+  ViewAxes axes = axes_from_name(job.axes == "auto" ? "lps" : job.axes);
+  if (job.axes == "auto" && detection) axes = ViewAxes{detection->frame.axes.col(2), -detection->frame.axes.col(1)};
   std::vector<std::pair<std::string, std::string>> pictures;  // file, PNG bytes
   if (job.picture_size > 0) {
     RenderSettings settings;
@@ -303,6 +385,26 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       Image map = with_colour_bar(render_view(spread, settings, "three_quarter", axes), bar);
       pictures.emplace_back("render_uncertainty.png", encode_png(map));
       cells.push_back({std::move(map), "uncertainty (" + std::to_string(uncertainty->samples) + " samples)"});
+    }
+    if (evaluation) {
+      // The real face coloured by its signed distance from the reconstruction, front and side, with the scale.
+      Scene heat;
+      heat.environment.up = axes.up;
+      const double range = std::max(5.0, std::ceil(evaluation->p90_abs_mm));
+      heat.add(std::make_shared<const TriMesh>(evaluation->face),
+               SurfaceMaterial::field("distance", -range, range, ColormapName::blue_white_red), "real face");
+      ColourBar bar;
+      bar.colormap = Colormap{ColormapName::blue_white_red};
+      bar.min = -range;
+      bar.max = range;
+      bar.title = "real - reconstruction";
+      bar.unit = "mm";
+      std::vector<SheetCell> heat_cells;
+      heat_cells.push_back({render_view(heat, settings, "front", axes), "front"});
+      heat_cells.push_back({render_view(heat, settings, "left", axes), "side"});
+      // The figures are in evaluation.json (a title long enough to hold them would be cut at small sizes).
+      Image sheet = make_sheet(heat_cells, 2, "real face vs reconstruction");
+      pictures.emplace_back("evaluation.png", encode_png(with_colour_bar(sheet, bar)));
     }
     pictures.emplace_back("reconstruction.png", encode_png(make_sheet(cells, 4, "forensim reconstruct")));
     if (!expression_targets.empty()) {
@@ -366,7 +468,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"residual_mm", d.residual_mm},
                          {"sharpness", d.sharpness},
                          {"symmetry_error_mm", d.symmetry_error_mm},
-                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()}});
+                         {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()},
+                         {"in_view", d.in_view}});
     }
     const SkullRegistration& reg = detection->registration;
     provenance["landmarks"]["detection"] = {{"reference", "template skull"},
@@ -445,6 +548,13 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     run.add_output("head_uncertainty.vtu");
     provenance["uncertainty"] = {{"samples", uncertainty->samples}, {"seed", uncertainty->seed}};
   }
+  if (evaluation) {
+    run.write("evaluation.json", evaluation_record.dump(2));
+    // The measured real face with its "distance" vertex field (mm), for ParaView and the viewer.
+    write_vtu(run.file("evaluation_face.vtu"), evaluation->face);
+    run.add_output("evaluation_face.vtu");
+    provenance["evaluation"] = evaluation_record;
+  }
   for (const auto& [file, bytes] : pictures) run.write(file, bytes);
   run.write("violations.json", violations.dump(2));
   run.write("provenance.json", provenance.dump(2));
@@ -455,6 +565,12 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   run.facts()["violations_before"] = result.violations_given_only.total();
   run.facts()["violations_after"] = result.violations_final.total();
   run.facts()["expressions"] = expression_targets.size();
+  if (evaluation) {
+    run.facts()["evaluation_mean_abs_mm"] = evaluation->mean_abs_mm;
+    run.facts()["evaluation_rms_mm"] = evaluation->rms_mm;
+    run.facts()["evaluation_signed_mean_mm"] = evaluation->signed_mean_mm;
+    run.facts()["evaluation_within_percent"] = 100.0 * evaluation->within_share;
+  }
   run.facts()["seconds_total"] = total.seconds();
   run.write_record();
   return run.facts();
@@ -490,10 +606,15 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--guides", a->guides_file, "Nose and mouth guide values (JSON, FaceGuides fields)");
       sub->add_flag("--no-interpolated", a->no_interpolated,
                     "Leave out the interpolated cranium and mandible landmarks");
+      sub->add_flag("--evaluate", a->evaluate,
+                    "Measure the CT's real face (skin iso-surface) against the reconstruction over the face region "
+                    "(forehead to chin, ear to ear): evaluation.json, evaluation.png");
       sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
           ->check(CLI::IsMember({"full", "coarse"}));
-      sub->add_option("--axes", j.axes, "Frame of the skull for the pictures: lps or yup")
-          ->check(CLI::IsMember({"lps", "yup"}));
+      sub->add_option("--axes", j.axes,
+                      "Frame of the skull for the pictures: lps, yup or auto (the detected head frame with "
+                      "--landmarks auto, else lps)")
+          ->check(CLI::IsMember({"lps", "yup", "auto"}));
       sub->add_option("--seed", j.seed, "Seed of the procedural skin maps");
       sub->add_option("--texture-size", j.texture_size, "Skin map resolution (0 = none)")->check(CLI::Range(0, 8192));
       sub->add_option("--picture-size", j.picture_size, "Pixels per rendered view (0 = no renders)")

@@ -50,8 +50,9 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
     j.has_guides = any_guide(j.guides);
   }
   j.interpolated_landmarks = root.get<bool>("interpolated_landmarks", defaults.interpolated_landmarks);
+  j.evaluate = root.get<bool>("evaluate", defaults.evaluate);
   j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
-  j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup"});
+  j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup", "auto"});
   j.seed = static_cast<std::uint64_t>(
       root.get_integer("seed", static_cast<long long>(defaults.seed), 0, std::numeric_limits<long long>::max()));
   j.texture_size = static_cast<int>(root.get_integer("texture_size", defaults.texture_size, 0, 8192));

@@ -19,7 +19,8 @@
 ///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
-///   axes             "lps" (default) or "yup": the skull's frame, for the pictures
+///   axes             "lps" (default), "yup" or "auto" (the detected head frame with automatic landmarks):
+///                    the skull's frame, for the pictures
 ///   seed             seed of the procedural skin maps
 ///   texture_size     skin map resolution (0 = no maps)
 ///   picture_size, samples  renders (picture_size 0 = no renders)
@@ -30,6 +31,9 @@
 ///   expressions      expression presets written as the GLB's morph targets (shape keys) and drawn in
 ///                    expressions.png: a list of names from neutral, smile, frown, worried, surprise (default
 ///                    ["smile", "frown", "surprise"]; [] for none)
+///   evaluate         false (default); true: the CT's real face (its skin iso-surface) measured against the
+///                    reconstruction over the face region (face_evaluation.hpp): evaluation.json, evaluation.png,
+///                    evaluation_face.vtu; the skull must come from a CT that holds the face
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
@@ -65,6 +69,7 @@ struct ReconstructJob {
   int uncertainty_samples = 0;  ///< 0: no ensemble
   std::optional<std::uint64_t> uncertainty_seed;
   std::vector<std::string> expressions = {"smile", "frown", "surprise"};
+  bool evaluate = false;
 };
 
 /// Reads a reconstruction job; `defaults` supplies every value the job leaves out (the command line's).

@@ -290,7 +290,11 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
   require_input(options.residual_radius_mm > 0.0, "landmark detection", "residual_radius_mm", "must be positive");
 
   LandmarkDetection result;
-  result.registration = register_skull(reference, target, options.registration);
+  SkullRegistrationOptions registration_options = options.registration;
+  if (reference_frame && !registration_options.similarity.reference_midsagittal) {
+    registration_options.similarity.reference_midsagittal = reference_frame->midsagittal;
+  }
+  result.registration = register_skull(reference, target, registration_options);
   const SkullRegistration& reg = result.registration;
   const auto& ls = reference_landmarks.landmarks();
   LandmarkSet transferred("transferred");
@@ -322,9 +326,17 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
   std::vector<RefinedLandmark> refined(ls.size());
   std::vector<LandmarkDefinition> defs(ls.size());
   for (std::size_t i = 0; i < ls.size(); ++i) defs[i] = landmark_definition(ls[i].name).value_or(transfer(""));
+  // A landmark the scan did not see stays where the registration put it (on the reference's missing part).
+  const ScanFieldOfView& view = options.registration.similarity.target_view;
+  std::vector<char> in_view(ls.size());
+  for (std::size_t i = 0; i < ls.size(); ++i) in_view[i] = static_cast<char>(view.contains(transferred[i].position_mm));
   parallel_for(
       0, ls.size(),
       [&](std::size_t i) {
+        if (!in_view[i]) {
+          refined[i].position_mm = transferred[i].position_mm;
+          return;
+        }
         refined[i] = refine(target, normals, frame, defs[i], side_of(ls[i].name), transferred[i].position_mm);
       },
       1);
@@ -339,6 +351,8 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
     d.refined_mm = refined[i].position_mm;
     d.residual_mm = reg.local_residual_mm(d.refined_mm, options.residual_radius_mm);
     d.sharpness = defs[i].rule == LandmarkRule::extremal ? refined[i].sharpness : options.transfer_definition_score;
+    d.in_view = in_view[i] != 0;
+    if (!d.in_view) d.sharpness = 0.0;
     const auto ref = vocabulary.find(d.name);
     bool symmetric_known = false;
     if (ref && ref->side != Side::none) {

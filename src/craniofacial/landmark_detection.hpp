@@ -78,6 +78,9 @@ struct DetectedLandmark {
   double sharpness = 0.0;              ///< definition term
   double symmetry_error_mm = 0.0;      ///< |mirror(left) - right| for pairs, distance off the plane for midline sites
   double confidence = 0.0;             ///< geometric mean of the residual, definition and symmetry terms
+  /// False when the transferred point lies outside the target's field of view (a CT's cut-off vault): the
+  /// landmark stays at transferred_mm, on the registered reference, with definition term and confidence 0.
+  bool in_view = true;
 };
 
 /// Result of detect_landmarks.
@@ -92,14 +95,17 @@ struct LandmarkDetection {
 /// target's head frame (Frankfort plane of the transferred po_L, po_R, or_L or or_R; midsagittal plane fitted to
 /// the target), refine each landmark by its definition, then score it. Confidence = (c_res c_def c_sym)^(1/3) with
 /// c_res = 1 / (1 + (residual / residual_scale)^2), c_def the sharpness (transfer_definition_score for transfer
-/// sites) and c_sym = 1 / (1 + (symmetry error / symmetry_scale)^2). Throws InputError naming "reference
-/// landmarks" when the set is empty or lacks the Frankfort landmarks, and the registration's errors.
+/// sites) and c_sym = 1 / (1 + (symmetry error / symmetry_scale)^2). Landmarks transferred outside
+/// options.registration.similarity.target_view are not refined (DetectedLandmark::in_view). Throws InputError naming
+/// "reference landmarks" when the set is empty or lacks the Frankfort landmarks, and the registration's errors.
 LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
                                    const TriMesh& target, const LandmarkDetectionOptions& options = {});
 
-/// As detect_landmarks, for a reference without the Frankfort landmarks: the target's frame is the reference's
-/// head frame `reference_frame` carried through the similarity, its midsagittal plane refitted to the target
-/// (fit_symmetry_plane). Throws InputError naming "reference landmarks" when the set is empty.
+/// As detect_landmarks, for a reference without the Frankfort landmarks: the registration keeps the reference
+/// frame's midsagittal plane on the target's symmetry plane (SimilarityRegistrationOptions::reference_midsagittal,
+/// unless the options give one); the target's frame is `reference_frame` carried through the similarity, its
+/// midsagittal plane refitted to the target (fit_symmetry_plane). Throws InputError naming "reference landmarks" when
+/// the set is empty.
 LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
                                    const HeadFrame& reference_frame, const TriMesh& target,
                                    const LandmarkDetectionOptions& options = {});

@@ -133,6 +133,7 @@ Skull skull_from_volume(const ScalarGrid& volume, const std::string& source, con
   Skull skull = skull_from_mesh(std::move(surface), source, options);
   skull.kind = "ct";
   skull.iso_value = iso;
+  skull.field_of_view = ScanFieldOfView::of_volume(volume);
   if (!iso_note.empty()) {
     std::vector<std::string> notes = {iso_note};
     for (std::string& n : skull.notes) notes.push_back(std::move(n));

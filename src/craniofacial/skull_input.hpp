@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "craniofacial/scan_field_of_view.hpp"
 #include "geometry/tri_mesh.hpp"
 #include "mesh_io/mesh_import.hpp"
 #include "volume/scalar_grid.hpp"
@@ -46,6 +47,8 @@ struct Skull {
   int components_found = 0;         ///< connected components before selection
   int components_kept = 0;
   std::vector<std::string> notes;  ///< what was done or looks doubtful (decimated, flipped, coarse, wrong units?)
+  /// CT: the volume's sample lattice (what was scanned; caps where the skull leaves it); mesh: unbounded.
+  ScanFieldOfView field_of_view;
 };
 
 /// True when `path` names a volume forensim reads (a folder, .nrrd, .nhdr, .mhd, .mha, .dcm, .tif, .tiff or a

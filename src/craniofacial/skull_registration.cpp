@@ -52,9 +52,10 @@ Moments moments(const std::vector<Vec3>& points) {
   return m;
 }
 
-/// Target surface with face normals for point-to-plane terms.
+/// A surface with face normals for point-to-plane terms and, for the target, its caps (triangles closing a cut).
 struct TargetSurface {
-  explicit TargetSurface(const TriMesh& mesh) : query(mesh), face_normals(mesh.triangles.size()) {
+  TargetSurface(const TriMesh& mesh, const ScanFieldOfView& view_in)
+      : query(mesh), face_normals(mesh.triangles.size()), cap(view_in.cap_triangles(mesh)), view(view_in) {
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
       const Tri& t = mesh.triangles[f];
       const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
@@ -64,48 +65,94 @@ struct TargetSurface {
   }
   ClosestPointQuery query;
   std::vector<Vec3> face_normals;
+  std::vector<char> cap;
+  ScanFieldOfView view;
 };
 
+/// Pairs of moving points x (on the mapped reference) and fixed points q (on the target) with the normal n of
+/// the point-to-plane term; pairs not kept carry no weight.
 struct Correspondences {
-  std::vector<Vec3> closest;
+  std::vector<Vec3> moving;
+  std::vector<Vec3> fixed;
   std::vector<Vec3> normal;
   std::vector<double> distance;
-  std::vector<char> kept;
+  std::vector<char> valid;  ///< the pair exists (forward: in the target's view, not on a cap)
+  std::vector<char> kept;   ///< valid and not trimmed
   double trimmed_rms = 0.0;
+  std::size_t kept_count = 0;
 };
 
-/// Closest points of `points`, with the worst `trim_fraction` marked as dropped.
+/// Marks the best valid pairs kept: all but the worst `trim_fraction` of the valid ones. Fills trimmed_rms.
+void trim(Correspondences& c, double trim_fraction) {
+  const std::size_t n = c.distance.size();
+  std::vector<double> sorted;
+  sorted.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (c.valid[i]) sorted.push_back(c.distance[i]);
+  }
+  c.kept.assign(n, 0);
+  c.kept_count = 0;
+  c.trimmed_rms = 0.0;
+  const std::size_t m = sorted.size();
+  if (m == 0) return;
+  const std::size_t keep = std::max<std::size_t>(
+      1, m - std::min(m - 1, static_cast<std::size_t>(std::floor(trim_fraction * static_cast<double>(m)))));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(keep - 1), sorted.end());
+  const double threshold = sorted[keep - 1];
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n && c.kept_count < keep; ++i) {
+    if (c.valid[i] && c.distance[i] <= threshold) {
+      c.kept[i] = 1;
+      sum += c.distance[i] * c.distance[i];
+      ++c.kept_count;
+    }
+  }
+  c.trimmed_rms = std::sqrt(sum / static_cast<double>(c.kept_count));
+}
+
+/// Closest target points of `points`: pairs outside the target's view or onto a cap are invalid, the worst
+/// `trim_fraction` of the rest dropped.
 Correspondences correspond(const TargetSurface& target, const std::vector<Vec3>& points, double trim_fraction) {
   Correspondences c;
   const auto hits = target.query.query_batch(points);
   const std::size_t n = points.size();
-  c.closest.resize(n);
+  c.moving = points;
+  c.fixed.resize(n);
   c.normal.resize(n);
   c.distance.resize(n);
-  c.kept.assign(n, 1);
+  c.valid.assign(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
-    c.closest[i] = hits[i]->point;
-    c.normal[i] = target.face_normals[static_cast<std::size_t>(hits[i]->triangle)];
+    const auto f = static_cast<std::size_t>(hits[i]->triangle);
+    c.fixed[i] = hits[i]->point;
+    c.normal[i] = target.face_normals[f];
     c.distance[i] = hits[i]->distance;
+    c.valid[i] = static_cast<char>(!target.cap[f] && target.view.contains(points[i]));
   }
-  const std::size_t keep = std::max<std::size_t>(
-      1, n - std::min(n - 1, static_cast<std::size_t>(std::floor(trim_fraction * static_cast<double>(n)))));
-  std::vector<double> sorted = c.distance;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(keep - 1), sorted.end());
-  const double threshold = sorted[keep - 1];
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n && count < keep; ++i) {
-    if (c.distance[i] <= threshold) {
-      sum += c.distance[i] * c.distance[i];
-      ++count;
-    }
+  trim(c, trim_fraction);
+  return c;
+}
+
+/// Closest points on the mapped reference of the target samples `targets`, found on the unmapped reference
+/// (`reference`) through the inverse map; the worst `trim_fraction` dropped.
+Correspondences correspond_reverse(const TargetSurface& reference, const Similarity& map,
+                                   const std::vector<Vec3>& targets, double trim_fraction) {
+  Correspondences c;
+  const std::size_t n = targets.size();
+  const Mat3 inverse = map.rotation.transpose() / map.scale;
+  std::vector<Vec3> z(n);
+  for (std::size_t i = 0; i < n; ++i) z[i] = inverse * (targets[i] - map.translation);
+  const auto hits = reference.query.query_batch(z);
+  c.moving.resize(n);
+  c.fixed = targets;
+  c.normal.resize(n);
+  c.distance.resize(n);
+  c.valid.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    c.moving[i] = map.apply(hits[i]->point);
+    c.normal[i] = map.rotation * reference.face_normals[static_cast<std::size_t>(hits[i]->triangle)];
+    c.distance[i] = map.scale * hits[i]->distance;
   }
-  for (std::size_t i = 0, kept = 0; i < n; ++i) {
-    c.kept[i] = (c.distance[i] <= threshold && kept < keep) ? 1 : 0;
-    kept += static_cast<std::size_t>(c.kept[i]);
-  }
-  c.trimmed_rms = std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, count)));
+  trim(c, trim_fraction);
   return c;
 }
 
@@ -135,41 +182,101 @@ Eigen::Matrix<double, 3, 7> point_to_point_rows(const Vec3& r) {
   return j;
 }
 
-IcpResult scaled_icp(const TargetSurface& target, const std::vector<Vec3>& samples, Similarity start, double size,
-                     const SimilarityRegistrationOptions& options, int max_iterations) {
+/// The two-way problem of one similarity: reference samples, target samples, both surfaces.
+struct TwoWay {
+  const TargetSurface& target;
+  const TargetSurface& reference;
+  const std::vector<Vec3>& reference_samples;
+  const std::vector<Vec3>& target_samples;
+};
+
+/// Pairs both ways under `map`, and the combined trimmed RMS sqrt((f^2 + w r^2) / (1 + w)).
+struct TwoWayPairs {
+  Correspondences forward, reverse;
+  double rms = std::numeric_limits<double>::infinity();
+};
+
+TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const SimilarityRegistrationOptions& options) {
+  TwoWayPairs p;
+  std::vector<Vec3> x(problem.reference_samples.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = map.apply(problem.reference_samples[i]);
+  p.forward = correspond(problem.target, x, options.trim_fraction);
+  const double w = options.reverse_weight;
+  double f2 = p.forward.kept_count > 0 ? p.forward.trimmed_rms * p.forward.trimmed_rms
+                                       : std::numeric_limits<double>::infinity();
+  if (w > 0.0) {
+    p.reverse = correspond_reverse(problem.reference, map, problem.target_samples, options.reverse_trim_fraction);
+    const double r2 = p.reverse.trimmed_rms * p.reverse.trimmed_rms;
+    p.rms = std::sqrt((f2 + w * r2) / (1.0 + w));
+  } else {
+    p.rms = std::sqrt(f2);
+  }
+  return p;
+}
+
+/// `plane`: when not null, the target's symmetry plane that the reference's stays on (only the turn about its
+/// normal, the scale about a point on it and shifts within it are free).
+IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const SimilarityRegistrationOptions& options,
+                     int max_iterations, const Plane* plane = nullptr) {
+  Eigen::Matrix<double, 7, 4> basis = Eigen::Matrix<double, 7, 4>::Zero();
+  if (plane) {
+    const Vec3 n = plane->normal.normalized();
+    const Vec3 u = n.unitOrthogonal();
+    const Vec3 v = n.cross(u);
+    basis.block<3, 1>(0, 0) = n;
+    basis(3, 1) = 1.0;
+    basis.block<3, 1>(4, 2) = u;
+    basis.block<3, 1>(4, 3) = v;
+  }
   IcpResult result;
   result.similarity = start;
-  std::vector<Vec3> x(samples.size());
+  const double w2 = options.point_weight * options.point_weight;
   for (int it = 0; it < max_iterations; ++it) {
-    for (std::size_t i = 0; i < samples.size(); ++i) x[i] = result.similarity.apply(samples[i]);
-    const Correspondences c = correspond(target, x, options.trim_fraction);
-    result.rms = c.trimmed_rms;
+    const TwoWayPairs p = pairs_of(problem, result.similarity, options);
+    result.rms = p.rms;
     result.iterations = it;
+    if (p.forward.kept_count == 0) break;  // the reference left the target's view
     Vec3 c0 = Vec3::Zero();
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      if (c.kept[i]) {
-        c0 += x[i];
-        ++kept;
-      }
+    for (std::size_t i = 0; i < p.forward.moving.size(); ++i) {
+      if (p.forward.kept[i]) c0 += p.forward.moving[i];
     }
-    c0 /= static_cast<double>(kept);
+    c0 /= static_cast<double>(p.forward.kept_count);
+    if (plane) c0 = plane->project(c0);
     Eigen::Matrix<double, 7, 7> h = Eigen::Matrix<double, 7, 7>::Zero();
     Eigen::Matrix<double, 7, 1> g = Eigen::Matrix<double, 7, 1>::Zero();
-    const double w2 = options.point_weight * options.point_weight;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      if (!c.kept[i]) continue;
-      const Vec3 r = x[i] - c0;
-      const Vec3 e = x[i] - c.closest[i];
-      const Row7 jp = point_to_plane_row(r, c.normal[i]);
-      h += jp.transpose() * jp;
-      g += jp.transpose() * c.normal[i].dot(e);
-      const Eigen::Matrix<double, 3, 7> jq = point_to_point_rows(r);
-      h += w2 * jq.transpose() * jq;
-      g += w2 * jq.transpose() * e;
+    // Each direction weighted by its share, so neither outvotes the other by its sample count.
+    const auto accumulate = [&](const Correspondences& c, double weight) {
+      if (c.kept_count == 0 || weight <= 0.0) return;
+      const double share = weight / static_cast<double>(c.kept_count);
+      for (std::size_t i = 0; i < c.moving.size(); ++i) {
+        if (!c.kept[i]) continue;
+        const Vec3 r = c.moving[i] - c0;
+        const Vec3 e = c.moving[i] - c.fixed[i];
+        const Row7 jp = point_to_plane_row(r, c.normal[i]);
+        h += share * jp.transpose() * jp;
+        g += share * jp.transpose() * c.normal[i].dot(e);
+        const Eigen::Matrix<double, 3, 7> jq = point_to_point_rows(r);
+        h += share * w2 * jq.transpose() * jq;
+        g += share * w2 * jq.transpose() * e;
+      }
+    };
+    accumulate(p.forward, 1.0);
+    accumulate(p.reverse, options.reverse_weight);
+    if (options.scale_prior_sd > 0.0) {
+      // Gaussian prior on log scale about 0 (both skulls in mm), weighted by the current residual: the MAP step.
+      const double lambda = p.rms * p.rms / (options.scale_prior_sd * options.scale_prior_sd);
+      h(3, 3) += lambda;
+      g(3) += lambda * std::log(result.similarity.scale);
     }
     for (int k = 0; k < 7; ++k) h(k, k) += 1e-9 * h.diagonal().maxCoeff() + 1e-12;
-    const Eigen::Matrix<double, 7, 1> delta = -h.ldlt().solve(g);
+    Eigen::Matrix<double, 7, 1> delta;
+    if (plane) {
+      const Eigen::Matrix<double, 4, 4> hr = basis.transpose() * h * basis;
+      const Eigen::Matrix<double, 4, 1> gr = basis.transpose() * g;
+      delta = -basis * hr.ldlt().solve(gr);
+    } else {
+      delta = -h.ldlt().solve(g);
+    }
     if (!delta.allFinite()) throw NumericError("similarity registration: singular Gauss-Newton system");
     const Vec3 omega = delta.segment<3>(0);
     const double sigma = delta(3);
@@ -184,33 +291,115 @@ IcpResult scaled_icp(const TargetSurface& target, const std::vector<Vec3>& sampl
     result.similarity = next;
     if (angle + std::abs(sigma) + tau.norm() / size < options.tolerance) break;
   }
-  for (std::size_t i = 0; i < samples.size(); ++i) x[i] = result.similarity.apply(samples[i]);
-  result.rms = correspond(target, x, options.trim_fraction).trimmed_rms;
+  result.rms = pairs_of(problem, result.similarity, options).rms;
   return result;
 }
 
+/// The 24 proper rotations that map the coordinate axes onto signed coordinate axes.
+std::vector<Mat3> axis_rotations() {
+  std::vector<Mat3> out;
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& perm : perms) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Mat3 r = Mat3::Zero();
+      for (int c = 0; c < 3; ++c) r(perm[c], c) = (signs >> c) & 1 ? -1.0 : 1.0;
+      if (r.determinant() > 0.0) out.push_back(r);
+    }
+  }
+  return out;
+}
+
+/// Target samples for the reverse pairs: every k-th vertex not on a cap, at most `max_samples`.
+std::vector<Vec3> target_samples(const TriMesh& target, const TargetSurface& surface, std::size_t max_samples) {
+  std::vector<char> on_cap(target.positions.size(), 0);
+  for (std::size_t t = 0; t < target.triangles.size(); ++t) {
+    if (!surface.cap[t]) continue;
+    for (Index v : target.triangles[t]) on_cap[static_cast<std::size_t>(v)] = 1;
+  }
+  std::vector<Vec3> free;
+  free.reserve(target.positions.size());
+  for (std::size_t i = 0; i < target.positions.size(); ++i) {
+    if (!on_cap[i]) free.push_back(target.positions[i]);
+  }
+  if (free.empty()) free = target.positions;
+  const std::size_t stride = std::max<std::size_t>(1, (free.size() + max_samples - 1) / max_samples);
+  std::vector<Vec3> samples;
+  for (std::size_t i = 0; i < free.size(); i += stride) samples.push_back(free[i]);
+  return samples;
+}
+
+SymmetryPlaneOptions symmetry_options() {
+  SymmetryPlaneOptions o;
+  o.max_iterations = 50;
+  o.max_samples = 1500;
+  return o;
+}
+
+/// Proper rotation taking unit vector a onto unit vector b.
+Mat3 rotation_between(const Vec3& a, const Vec3& b) {
+  return Eigen::Quaterniond::FromTwoVectors(a, b).toRotationMatrix();
+}
+
+}  // namespace
+
+SymmetryPlaneFit fit_target_symmetry(const TriMesh& target) {
+  check_mesh(target, "target skull");
+  const Moments mt = moments(target.positions);
+  const Eigen::SelfAdjointEigenSolver<Mat3> et(mt.covariance);
+  const SymmetryPlaneOptions o = symmetry_options();
+  SymmetryPlaneFit best;
+  best.rms_mm = std::numeric_limits<double>::infinity();
+  std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  for (int k = 0; k < 3; ++k) normals.push_back(et.eigenvectors().col(k));
+  for (const Vec3& n : normals) {
+    const SymmetryPlaneFit fit = fit_symmetry_plane(target, Plane{mt.centroid, n}, o);
+    if (fit.rms_mm < best.rms_mm) best = fit;
+  }
+  return best;
+}
+
+namespace {
+
 IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, const TargetSurface& surface,
-                           const SimilarityRegistrationOptions& options, std::vector<Vec3>* samples_out) {
+                           const SimilarityRegistrationOptions& options, std::vector<Vec3>* samples_out,
+                           std::optional<Plane>* target_plane_out = nullptr) {
   check_mesh(reference, "reference skull");
   check_mesh(target, "target skull");
   require_input(options.max_samples >= 16, "similarity registration", "max_samples", "must be at least 16");
   require_input(options.max_iterations >= 1, "similarity registration", "max_iterations", "must be at least 1");
   require_input(options.trim_fraction >= 0.0 && options.trim_fraction < 0.9, "similarity registration", "trim_fraction",
                 "must lie in [0, 0.9)");
+  require_input(options.reverse_trim_fraction >= 0.0 && options.reverse_trim_fraction < 0.9, "similarity registration",
+                "reverse_trim_fraction", "must lie in [0, 0.9)");
+  require_input(options.reverse_weight >= 0.0, "similarity registration", "reverse_weight", "must not be negative");
   require_input(options.point_weight >= 0.0, "similarity registration", "point_weight", "must not be negative");
   const Moments mr = moments(reference.positions);
   const Moments mt = moments(target.positions);
   require_input(mr.covariance.trace() > 0.0, "reference skull", "", "all vertices coincide");
   require_input(mt.covariance.trace() > 0.0, "target skull", "", "all vertices coincide");
-  const double scale = std::sqrt(mt.covariance.trace() / mr.covariance.trace());
+  const double moment_scale = std::sqrt(mt.covariance.trace() / mr.covariance.trace());
   const double size = std::sqrt(mt.covariance.trace());
+  // With the prior both skulls are in mm and the start is its centre, scale 1: a partial target biases the moments.
+  const double start_scale = options.scale_prior_sd > 0.0 ? 1.0 : moment_scale;
 
-  std::vector<Similarity> starts;
-  Similarity identity;
-  identity.scale = scale;
-  identity.translation = mt.centroid - scale * mr.centroid;
-  starts.push_back(identity);
-  if (options.principal_axis_starts) {
+  std::optional<Plane> plane;
+  Plane reference_plane;
+  std::vector<Mat3> rotations;
+  if (options.reference_midsagittal) {
+    plane = fit_target_symmetry(target).plane;
+    // The reference's plane refined by the same fit, so that both are the planes of best symmetry.
+    reference_plane = fit_symmetry_plane(reference, *options.reference_midsagittal, symmetry_options()).plane;
+    const Vec3 nr = reference_plane.normal;
+    for (double sign : {1.0, -1.0}) {
+      const Mat3 base = rotation_between(nr, sign * plane->normal);
+      for (int k = 0; k < 12; ++k) {
+        rotations.push_back(Eigen::AngleAxisd(k * M_PI / 6.0, plane->normal).toRotationMatrix() * base);
+      }
+    }
+  } else {
+    rotations.push_back(Mat3::Identity());
+  }
+  if (options.principal_axis_starts && !plane) {
     const Eigen::SelfAdjointEigenSolver<Mat3> er(mr.covariance);
     const Eigen::SelfAdjointEigenSolver<Mat3> et(mt.covariance);
     Mat3 ar = er.eigenvectors();
@@ -218,23 +407,66 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     if (ar.determinant() < 0.0) ar.col(0) *= -1.0;
     if (at.determinant() < 0.0) at.col(0) *= -1.0;
     for (const Vec3& signs : {Vec3(1, 1, 1), Vec3(-1, -1, 1), Vec3(-1, 1, -1), Vec3(1, -1, -1)}) {
-      Similarity s;
-      s.scale = scale;
-      s.rotation = at * signs.asDiagonal() * ar.transpose();
-      s.translation = mt.centroid - scale * (s.rotation * mr.centroid);
-      starts.push_back(s);
+      rotations.push_back(at * signs.asDiagonal() * ar.transpose());
     }
   }
-  // Coarse runs from every start on a few samples, then the best refined on all of them.
-  const std::vector<Vec3> samples = sample_vertices(reference, options.max_samples);
-  const std::vector<Vec3> coarse = sample_vertices(reference, std::min<std::size_t>(options.max_samples, 500));
-  IcpResult best;
-  for (const Similarity& start : starts) {
-    const IcpResult r = scaled_icp(surface, coarse, start, size, options, std::min(options.max_iterations, 25));
-    if (r.rms < best.rms) best = r;  // strict: the earliest start wins ties
+  if (options.quarter_turn_starts && !plane) {
+    for (const Mat3& r : axis_rotations()) {
+      if (!r.isIdentity()) rotations.push_back(r);
+    }
   }
-  IcpResult fine = scaled_icp(surface, samples, best.similarity, size, options, options.max_iterations);
+  std::vector<Similarity> starts;
+  for (const Mat3& r : rotations) {
+    Similarity s;
+    s.scale = start_scale;
+    s.rotation = r;
+    s.translation = mt.centroid - start_scale * (r * mr.centroid);
+    if (plane) {
+      // The reference's plane onto the target's.
+      s.translation -= plane->signed_distance(s.apply(reference_plane.point)) * plane->normal;
+    }
+    starts.push_back(s);
+  }
+  const TargetSurface reference_surface(reference, ScanFieldOfView{});
+  const std::vector<Vec3> samples = sample_vertices(reference, options.max_samples);
+  const std::vector<Vec3> targets = target_samples(target, surface, options.max_samples / 2);
+  // Every start briefly on few samples, the best few further, then the best on all samples.
+  const std::vector<Vec3> coarse = sample_vertices(reference, std::min<std::size_t>(options.max_samples, 250));
+  const std::vector<Vec3> coarse_targets =
+      target_samples(target, surface, std::min<std::size_t>(options.max_samples, 250));
+  const TwoWay coarse_problem{surface, reference_surface, coarse, coarse_targets};
+  std::vector<IcpResult> runs;
+  for (const Similarity& start : starts) {
+    runs.push_back(scaled_icp(coarse_problem, start, size, options, std::min(options.max_iterations, 10),
+                              plane ? &*plane : nullptr));
+  }
+  std::vector<std::size_t> order(runs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].rms < runs[b].rms; });
+  IcpResult best;
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
+    const IcpResult r = scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
+                                   std::min(options.max_iterations, 25), plane ? &*plane : nullptr);
+    if (r.rms < best.rms) best = r;  // strict: the earliest wins ties
+  }
+  const TwoWay problem{surface, reference_surface, samples, targets};
+  if (plane) {
+    // The target's plane refitted from the registered reference's (the first fit started from the axes), and
+    // the similarity turned and shifted onto it.
+    const Similarity& b = best.similarity;
+    const Vec3 mapped_normal = b.rotation * reference_plane.normal;
+    plane = fit_symmetry_plane(target, Plane{b.apply(reference_plane.point), mapped_normal}, symmetry_options()).plane;
+    const Vec3 on = b.apply(reference_plane.point);
+    const Mat3 turn = rotation_between(mapped_normal, plane->normal);
+    best.similarity.rotation = turn * b.rotation;
+    best.similarity.translation = turn * (b.translation - on) + on;
+    best.similarity.translation -= plane->signed_distance(best.similarity.apply(reference_plane.point)) * plane->normal;
+  }
+  IcpResult fine =
+      scaled_icp(problem, best.similarity, size, options, options.max_iterations, plane ? &*plane : nullptr);
+
   if (samples_out) *samples_out = samples;
+  if (target_plane_out) *target_plane_out = plane;
   return fine;
 }
 
@@ -262,7 +494,8 @@ double SkullRegistration::local_residual_mm(const Vec3& target_point, double rad
   std::size_t count = 0;
   const double r2 = radius_mm * radius_mm;
   for (std::size_t i = 0; i < sample_positions.size(); ++i) {
-    if ((sample_positions[i] - target_point).squaredNorm() <= r2) {
+    const bool in_view = i >= sample_in_view.size() || sample_in_view[i];
+    if (in_view && (sample_positions[i] - target_point).squaredNorm() <= r2) {
       sum += sample_residual_mm[i] * sample_residual_mm[i];
       ++count;
     }
@@ -273,7 +506,7 @@ double SkullRegistration::local_residual_mm(const Vec3& target_point, double rad
 Similarity register_similarity(const TriMesh& reference, const TriMesh& target,
                                const SimilarityRegistrationOptions& options, double* rms_mm, int* iterations) {
   check_mesh(target, "target skull");
-  const TargetSurface surface(target);
+  const TargetSurface surface(target, options.target_view);
   const IcpResult r = similarity_stage(reference, target, surface, options, nullptr);
   if (rms_mm) *rms_mm = r.rms;
   if (iterations) *iterations = r.iterations;
@@ -293,18 +526,23 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
   require_input(nr.tangential_weight >= 0.0 && nr.tangential_weight <= 1.0, where, "tangential_weight",
                 "must lie in [0, 1]");
   check_mesh(target, "target skull");
-  const TargetSurface surface(target);
+  const TargetSurface surface(target, options.similarity.target_view);
   std::vector<Vec3> samples;
-  const IcpResult sim = similarity_stage(reference, target, surface, options.similarity, &samples);
+  std::optional<Plane> target_plane;
+  const IcpResult sim = similarity_stage(reference, target, surface, options.similarity, &samples, &target_plane);
 
   SkullRegistration reg;
   reg.similarity = sim.similarity;
-  reg.similarity_rms_mm = sim.rms;
-  reg.rms_mm = sim.rms;
+  reg.target_midsagittal = target_plane;
   reg.similarity_iterations = sim.iterations;
   const std::size_t s_count = samples.size();
   std::vector<Vec3> y(s_count);
   for (std::size_t i = 0; i < s_count; ++i) y[i] = sim.similarity.apply(samples[i]);
+  // Reference -> target, as the non-rigid stage measures it.
+  reg.similarity_rms_mm =
+      correspond(surface, y, options.non_rigid_enabled ? nr.trim_fraction : options.similarity.trim_fraction)
+          .trimmed_rms;
+  reg.rms_mm = reg.similarity_rms_mm;
 
   if (options.non_rigid_enabled) {
     // Nodes: farthest-point samples, from the sample nearest the centroid (deterministic).
@@ -353,7 +591,7 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
     }
     Eigen::MatrixXd w = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_nodes), 3);
     std::vector<Vec3> x = y;
-    double rms = sim.rms;
+    double rms = reg.similarity_rms_mm;
     for (double stiffness : nr.stiffness_schedule) {
       for (int it = 0; it < nr.iterations_per_stage; ++it) {
         const Correspondences c = correspond(surface, x, nr.trim_fraction);
@@ -362,7 +600,7 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
         Eigen::MatrixXd d(static_cast<Eigen::Index>(s_count), 3);
         for (std::size_t i = 0; i < s_count; ++i) {
           const auto row = static_cast<Eigen::Index>(i);
-          const Vec3 offset = c.closest[i] - x[i];
+          const Vec3 offset = c.fixed[i] - x[i];
           const Vec3& n = c.normal[i];
           const Vec3 normal_part = n * n.dot(offset);
           const Vec3 target_u = (x[i] - y[i]) + normal_part + nr.tangential_weight * (offset - normal_part);
@@ -386,10 +624,12 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
     reg.rms_mm = rms;
     reg.sample_positions = x;
     reg.sample_residual_mm = c.distance;
+    reg.sample_in_view = c.valid;
   } else {
     const Correspondences c = correspond(surface, y, options.similarity.trim_fraction);
     reg.sample_positions = y;
     reg.sample_residual_mm = c.distance;
+    reg.sample_in_view = c.valid;
   }
   return reg;
 }

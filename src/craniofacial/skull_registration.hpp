@@ -7,19 +7,31 @@
 /// Two stages, both iterated closest points against the target's surface (src/spatial ClosestPointQuery):
 /// 1. a similarity x -> s R x + t (scaled ICP, point-to-plane with a weak point-to-point term, the worst pairs
 ///    trimmed), started from the principal axes of both meshes (all four proper sign choices) and from the
-///    meshes' own orientation, the best trimmed RMS kept;
+///    meshes' own orientation and its axis-aligned quarter turns (scans and CTs are mostly taken square to the
+///    head), at scale 1 under a Gaussian prior on log scale (both meshes in mm; MAP steps), each briefly, the
+///    best few further, the best trimmed RMS kept. The pairs run both ways, so that a partial target
+///    does not shrink the reference into itself (one-way ICP with a free scale always gains by shrinking):
+///    reference samples to their closest target points, kept only where the target has data (inside its
+///    field of view, not on a cap closing a cut: scan_field_of_view.hpp), and target samples to their closest
+///    reference points, the worst share trimmed (parts the reference lacks: vertebrae, the CT table). Each
+///    direction is a trimmed ICP (Chetverikov et al. 2002); together they are the symmetric ICP of partial
+///    overlaps;
 /// 2. a smooth displacement u(y) = sum_j w_j exp(-|y - c_j|^2 / (2 sigma^2)) on coarse nodes c_j spread over the
 ///    reference (Gaussian radial basis functions), fitted by regularised least squares
 ///    min sum_i |P_i (y_i + u(y_i) - q_i)|^2 + lambda w^T K w, K_jk = exp(-|c_j - c_k|^2 / (2 sigma^2)),
 ///    with the stiffness lambda lowered stage by stage (the motion-coherence prior of coherent point drift,
-///    Myronenko and Song 2010, with closest-point correspondences).
+///    Myronenko and Song 2010, with closest-point correspondences); reference samples outside the target's field
+///    of view have no pair and follow the smooth field.
 /// Deterministic at any thread count: closest-point batches keep their order and every reduction is serial
 /// or over fixed blocks.
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "core/types.hpp"
+#include "craniofacial/head_frame.hpp"
+#include "craniofacial/scan_field_of_view.hpp"
 #include "geometry/tri_mesh.hpp"
 
 namespace forensim {
@@ -35,12 +47,29 @@ struct Similarity {
 };
 
 struct SimilarityRegistrationOptions {
-  std::size_t max_samples = 4000;     ///< reference vertices used (every k-th when the mesh has more)
-  int max_iterations = 80;            ///< Gauss-Newton iterations per start
+  std::size_t max_samples =
+      4000;                 ///< reference vertices used (every k-th when the mesh has more); half as many target ones
+  int max_iterations = 80;  ///< Gauss-Newton iterations per start
   double trim_fraction = 0.1;         ///< share of worst pairs dropped each iteration (missing parts, damage)
   double point_weight = 0.1;          ///< weight of the point-to-point term beside point-to-plane (stabilises sliding)
-  double tolerance = 1e-5;            ///< stop when the update (rotation rad, log scale, translation / size) is below
+  double tolerance = 1e-7;            ///< stop when the update (rotation rad, log scale, translation / size) is below
   bool principal_axis_starts = true;  ///< also start from the four proper principal-axis alignments
+  bool quarter_turn_starts = true;    ///< also start from the 23 other axis-aligned proper rotations
+  /// Weight of the target -> reference pairs beside the reference -> target ones (0: one way only).
+  double reverse_weight = 1.0;
+  double reverse_trim_fraction = 0.3;  ///< share of worst target -> reference pairs dropped
+  /// SD of a Gaussian prior on log(scale) about 0 (both skulls in mm; adult skulls vary by about 10 %); 0 = none.
+  /// The starts take scale 1 with the prior, the moment-matched scale without.
+  double scale_prior_sd = 0.1;
+  /// Where the target has data (a CT's lattice; unbounded for meshes): reference samples outside it, or whose
+  /// closest target point lies on a cap, have no pair. Used by the non-rigid stage too.
+  ScanFieldOfView target_view;
+  /// The reference's plane of bilateral symmetry (refined by fit_symmetry_plane). When given, the target's is fitted
+  /// (fit_symmetry_plane from the planes through its centroid square to the coordinate and principal axes, the lowest
+  /// RMS kept) and the similarity maps the one onto the other: only the turn about the plane's normal, the scale and
+  /// the shift within the plane stay free, started every 30 degrees of the turn, both ways round. This keeps a
+  /// reference of a different shape (the template phantom) from settling turned sideways on a partial skull.
+  std::optional<Plane> reference_midsagittal;
 };
 
 struct NonRigidRegistrationOptions {
@@ -62,20 +91,22 @@ struct SkullRegistrationOptions {
 /// The reference -> target map and how well it fits.
 struct SkullRegistration {
   Similarity similarity;
-  std::vector<Vec3> node_positions;        ///< #N nodes c_j in target space (similarity-mapped reference), mm
-  std::vector<Vec3> node_weights;          ///< #N coefficients w_j, mm
-  double kernel_width_mm = 0.0;            ///< sigma
-  double similarity_rms_mm = 0.0;          ///< trimmed RMS point-to-surface distance after the similarity
-  double rms_mm = 0.0;                     ///< trimmed RMS after the non-rigid stage (= similarity_rms_mm without it)
-  int similarity_iterations = 0;           ///< iterations of the start that was kept
-  std::vector<Vec3> sample_positions;      ///< #S reference sample points mapped into target space, mm
-  std::vector<double> sample_residual_mm;  ///< #S distance of each mapped sample to the target surface, mm
+  std::vector<Vec3> node_positions;         ///< #N nodes c_j in target space (similarity-mapped reference), mm
+  std::vector<Vec3> node_weights;           ///< #N coefficients w_j, mm
+  double kernel_width_mm = 0.0;             ///< sigma
+  double similarity_rms_mm = 0.0;           ///< trimmed RMS reference -> target distance after the similarity
+  double rms_mm = 0.0;                      ///< trimmed RMS after the non-rigid stage (= similarity_rms_mm without it)
+  int similarity_iterations = 0;            ///< iterations of the start that was kept
+  std::vector<Vec3> sample_positions;       ///< #S reference sample points mapped into target space, mm
+  std::vector<double> sample_residual_mm;   ///< #S distance of each mapped sample to the target surface, mm
+  std::vector<char> sample_in_view;         ///< #S 1 where the sample has a pair (in the target's field of view)
+  std::optional<Plane> target_midsagittal;  ///< the target's fitted symmetry plane (with reference_midsagittal)
 
   /// Target-space position of a reference point: the similarity, then the displacement field.
   Vec3 map(const Vec3& reference_point) const;
   /// Displacement field u at target-space point y (zero without the non-rigid stage), mm.
   Vec3 displacement(const Vec3& y) const;
-  /// RMS of sample_residual_mm over the samples mapped within `radius_mm` of `target_point` (the global
+  /// RMS of sample_residual_mm over the samples in view mapped within `radius_mm` of `target_point` (the global
   /// rms_mm when none is), mm: how well the registration fits near a landmark.
   double local_residual_mm(const Vec3& target_point, double radius_mm) const;
 };
@@ -86,6 +117,10 @@ struct SkullRegistration {
 Similarity register_similarity(const TriMesh& reference, const TriMesh& target,
                                const SimilarityRegistrationOptions& options = {}, double* rms_mm = nullptr,
                                int* iterations = nullptr);
+
+/// The target's plane of symmetry as register_similarity finds it with reference_midsagittal: fit_symmetry_plane
+/// from the planes through the centroid square to the coordinate and principal axes, the lowest RMS kept.
+SymmetryPlaneFit fit_target_symmetry(const TriMesh& target);
 
 /// Similarity then non-rigid registration of `reference` onto `target` (both mm). Throws InputError as
 /// register_similarity, and for options out of range (naming the option).

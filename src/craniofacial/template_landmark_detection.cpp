@@ -49,6 +49,12 @@ LandmarkDetection detect_template_landmarks(const TemplateHead& head, const TriM
     DetectedLandmark& detail = detection.details[i];
     Vec3 position = detail.transferred_mm;
     const auto definition = landmark_definition(l.name);
+    if (!detail.in_view) {
+      // Not seen by the scan: on the registered template (complete_skull puts its missing part there).
+      detail.refined_mm = position;
+      landmarks.add(std::move(l));
+      continue;
+    }
     if (definition && definition->rule != LandmarkRule::transfer) {
       // The definition's point on the template skull and on the target; the template's landmark lies `offset`
       // from the former. Where either is no local extremum the registration alone places the landmark.

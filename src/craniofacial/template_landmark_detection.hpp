@@ -28,7 +28,9 @@ HeadFrame template_head_frame(const TemplateHead& head);
 /// extremal or midline site is refined on the target and moved by the offset from the definition's point to
 /// the template's landmark measured on the template skull (carried through the similarity), unless either
 /// refinement ends at its search limit (no local extremum: the registration alone places it); then it goes onto
-/// the skull's surface (closest point). The template's own skull thus detects its own landmarks. Result
+/// the skull's surface (closest point). The template's own skull thus detects its own landmarks. A landmark
+/// outside the target's field of view (options.registration.similarity.target_view) stays at its transferred
+/// position, on the registered template (see skull_completion.hpp). Result
 /// landmarks have source detected and detect_landmarks' confidence in [0, 1]; details[i].refined_mm is the
 /// final position. Throws InputError for an empty skull and the registration's errors.
 LandmarkDetection detect_template_landmarks(const TemplateHead& head, const TriMesh& skull,

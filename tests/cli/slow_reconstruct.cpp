@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -187,12 +188,12 @@ TEST(SlowReconstructCli, CtPhantomWithAutomaticLandmarks) {
             << run["facts"]["seconds_total"] << " s\n";
 }
 
-TEST(SlowReconstructCli, RealCtWithAutomaticLandmarks) {
+TEST(SlowReconstructCli, RealCtWithAutomaticLandmarksEvaluatedAgainstItsFace) {
   FORENSIM_REQUIRE_DATA(ct, "ct-head-headsq/quarter.nhdr");
   const auto dir = test::scratch_dir("reconstruct_slow_headsq");
   const auto out = dir / "run";
-  const auto r =
-      run_cli(std::string(kSmall) + "--picture-size 0 --ct " + ct.string() + " --landmarks auto -o " + out.string());
+  const auto r = run_cli(std::string(kSmall) + "--picture-size 128 --expressions none --axes auto --ct " + ct.string() +
+                         " --landmarks auto --evaluate -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto provenance = nlohmann::json::parse(read_file(out / "provenance.json"));
   EXPECT_EQ(provenance["skull"]["kind"], "ct");
@@ -200,6 +201,32 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarks) {
   const auto& detection = provenance["landmarks"]["detection"];
   std::cout << "headsq CT, automatic landmarks: similarity scale " << detection["similarity_scale"] << ", rms "
             << detection["similarity_rms_mm"] << " mm, non-rigid rms " << detection["non_rigid_rms_mm"] << " mm\n";
+  // No vault and the neck in the scan: the template skull keeps an adult's size (it shrank to 0.59 before the
+  // registration paired only where the CT has data), and the vault's landmarks lie outside the scan.
+  EXPECT_GT(detection["similarity_scale"].get<double>(), 0.9);
+  EXPECT_LT(detection["similarity_scale"].get<double>(), 1.1);
+  std::vector<std::string> unseen;
+  for (const auto& l : detection["landmarks"]) {
+    if (!l["in_view"].get<bool>()) unseen.push_back(l["name"]);
+  }
+  EXPECT_NE(std::find(unseen.begin(), unseen.end(), "v"), unseen.end());
+  EXPECT_EQ(std::find(unseen.begin(), unseen.end(), "n"), unseen.end());
+  // The evaluation against the CT's own face.
+  const auto e = nlohmann::json::parse(read_file(out / "evaluation.json"));
+  std::cout << "headsq evaluation: mean " << e["mean_abs_mm"] << " mm, RMS " << e["rms_mm"] << " mm, signed mean "
+            << e["signed_mean_mm"] << " mm, " << e["within_percent"] << " % within 2.5 mm over " << e["area_mm2"]
+            << " mm^2\n";
+  for (const char* key : {"mean_abs_mm", "rms_mm", "signed_mean_mm", "within_share", "area_mm2"}) {
+    EXPECT_TRUE(std::isfinite(e[key].get<double>())) << key;
+  }
+  EXPECT_LE(e["mean_abs_mm"].get<double>(), e["rms_mm"].get<double>());
+  EXPECT_LE(std::abs(e["signed_mean_mm"].get<double>()), e["mean_abs_mm"].get<double>());
+  // Measured 37 % here (literature 54-77 %); the floor catches a face that is lost again.
+  EXPECT_GT(e["within_share"].get<double>(), 0.30);
+  // A face of about 100 x 150 mm or more: the region is the face, not a patch of it.
+  EXPECT_GT(e["area_mm2"].get<double>(), 15000.0);
+  EXPECT_TRUE(std::filesystem::exists(out / "evaluation.png"));
+  EXPECT_TRUE(std::filesystem::exists(out / "evaluation_face.vtu"));
 }
 
 TEST(SlowReconstructCli, UncertaintyEnsembleWritesTheSpreadPerVertex) {

@@ -145,3 +145,18 @@ TEST(ReconstructCli, JobFileWithUnknownKeyOrBadValueExitsWithJobCode) {
   EXPECT_NE(r.output.find("nasal_spine_tip"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "d"));
 }
+
+TEST(ReconstructCli, EvaluateRefusesASkullWithoutAFace) {
+  const auto dir = test::scratch_dir("reconstruct_cli_evaluate");
+  const auto r = run_cli(std::string(kSmall) + "--evaluate -o " + (dir / "run").string());
+  EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
+  EXPECT_NE(r.output.find("--evaluate"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("skin"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "run"));
+  write_text(dir / "skull.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const auto m = run_cli(std::string(kSmall) + "--evaluate --skull " + (dir / "skull.obj").string() + " -o " +
+                         (dir / "run2").string());
+  EXPECT_EQ(m.exit_code, code(ErrorKind::input)) << m.output;
+  EXPECT_NE(m.output.find("skull.obj"), std::string::npos) << m.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "run2"));
+}
