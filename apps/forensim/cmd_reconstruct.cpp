@@ -23,6 +23,7 @@
 #include "craniofacial/reconstruction.hpp"
 #include "craniofacial/reconstruction_uncertainty.hpp"
 #include "craniofacial/skull_completion.hpp"
+#include "craniofacial/skull_guides.hpp"
 #include "craniofacial/skull_input.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -51,6 +52,7 @@ struct ReconstructArgs {
   std::string out;
   bool no_interpolated = false;
   bool evaluate = false;
+  bool measure_guides = false;
   std::string expressions;  ///< --expressions: comma-separated presets, or "none"
 };
 
@@ -119,6 +121,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--expressions")) job.expressions = split_expression_list(a.expressions);
   if (a.no_interpolated) job.interpolated_landmarks = false;
   if (a.evaluate) job.evaluate = true;
+  if (a.measure_guides) job.measure_guides = true;
   nlohmann::json guides_record = nullptr;
   if (!a.guides_file.empty()) {
     JobDocument guides_doc = JobDocument::load(a.guides_file);
@@ -254,6 +257,26 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   ReconstructionOptions options;
   options.fit.interpolated_landmarks = job.interpolated_landmarks;
   if (job.has_guides) options.guides = job.guides;
+  nlohmann::json measured_guides = nullptr;
+  if (job.measure_guides) {
+    std::optional<HeadFrame> guide_frame;
+    if (detection) guide_frame = detection->frame;
+    if (landmark_mode == "template") guide_frame = template_head_frame(head);
+    const SkullGuideMeasurement m =
+        measure_skull_guides(skull.mesh, skull_landmarks_in, guide_frame ? &*guide_frame : nullptr);
+    if (any_guide(m.guides)) options.guides = merge_face_guides(m.guides, job.has_guides ? job.guides : FaceGuides{});
+    measured_guides = {{"measured", m.measured},
+                       {"missing", m.missing},
+                       {"head_frame", m.head_frame},
+                       {"values", face_guides_json(m.guides)},
+                       {"aperture_width_mm", m.aperture_width_mm},
+                       {"spine_length_mm", m.spine_length_mm}};
+    std::string line = "guides measured on the skull:";
+    for (const std::string& g : m.measured) line += " " + g;
+    if (m.measured.empty()) line += " none";
+    for (const std::string& why : m.missing) line += "; not " + why;
+    std::printf("%s\n", line.c_str());
+  }
   Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
   const ReconstructionResult& result = reconstruction.result();
   const TemplateFitResult& fit = reconstruction.fit();
@@ -479,6 +502,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                                             {"landmarks", details}};
   }
   provenance["guides"] = guides_record;
+  if (job.measure_guides) provenance["guides_measured"] = measured_guides;
   if (options.guides) provenance["guides_adjusted"] = record["guides_adjusted"];
   if (!expression_targets.empty()) {
     nlohmann::json list = nlohmann::json::array();
@@ -606,6 +630,9 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--guides", a->guides_file, "Nose and mouth guide values (JSON, FaceGuides fields)");
       sub->add_flag("--no-interpolated", a->no_interpolated,
                     "Leave out the interpolated cranium and mandible landmarks");
+      sub->add_flag("--measure-guides", a->measure_guides,
+                    "Measure the nose and mouth guides on the skull (aperture, nasal spine, mouth corners); "
+                    "--guides values override them");
       sub->add_flag("--evaluate", a->evaluate,
                     "Measure the CT's real face (skin iso-surface) against the reconstruction over the face region "
                     "(forehead to chin, ear to ear): evaluation.json, evaluation.png");

@@ -51,6 +51,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   }
   j.interpolated_landmarks = root.get<bool>("interpolated_landmarks", defaults.interpolated_landmarks);
   j.evaluate = root.get<bool>("evaluate", defaults.evaluate);
+  j.measure_guides = root.get<bool>("measure_guides", defaults.measure_guides);
   j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
   j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup", "auto"});
   j.seed = static_cast<std::uint64_t>(

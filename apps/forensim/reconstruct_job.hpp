@@ -34,6 +34,8 @@
 ///   evaluate         false (default); true: the CT's real face (its skin iso-surface) measured against the
 ///                    reconstruction over the face region (face_evaluation.hpp): evaluation.json, evaluation.png,
 ///                    evaluation_face.vtu; the skull must come from a CT that holds the face
+///   measure_guides   false (default); true: the nose and mouth guides measured on the skull (skull_guides.hpp:
+///                    nasal aperture, nasal spine, mouth corners), the "guides" values given overriding them
 /// Relative paths in a job file are taken from the job file's folder.
 
 #include <cstdint>
@@ -70,6 +72,7 @@ struct ReconstructJob {
   std::optional<std::uint64_t> uncertainty_seed;
   std::vector<std::string> expressions = {"smile", "frown", "surprise"};
   bool evaluate = false;
+  bool measure_guides = false;
 };
 
 /// Reads a reconstruction job; `defaults` supplies every value the job leaves out (the command line's).

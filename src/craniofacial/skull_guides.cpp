@@ -18,17 +18,22 @@ namespace {
 const std::string source = "skull guides";
 
 // Head directions: the head frame when the landmarks give one (porions, orbitale, midline points), else LPS.
-bool head_directions(const LandmarkSet& landmarks, Vec3& lateral, Vec3& up) {
+bool head_directions(const LandmarkSet& landmarks, const HeadFrame* given, Vec3& lateral, Vec3& up) {
   lateral = Vec3::UnitX();
   up = Vec3::UnitZ();
-  try {
-    const HeadFrame frame = head_frame_from_landmarks(landmarks);
-    lateral = frame.axes.col(0).normalized();
-    up = (frame.axes.col(2) - frame.axes.col(2).dot(lateral) * lateral).normalized();
-    return true;
-  } catch (const InputError&) {
-    return false;
+  std::optional<HeadFrame> frame;
+  if (given) {
+    frame = *given;
+  } else {
+    try {
+      frame = head_frame_from_landmarks(landmarks);
+    } catch (const InputError&) {
+      return false;
+    }
   }
+  lateral = frame->axes.col(0).normalized();
+  up = (frame->axes.col(2) - frame->axes.col(2).dot(lateral) * lateral).normalized();
+  return true;
 }
 
 const Landmark* first_of(const LandmarkSet& l, std::initializer_list<const char*> names) {
@@ -93,7 +98,7 @@ std::optional<ApertureLine> aperture_line(const RayCaster& caster, const Vec3& c
 
 }  // namespace
 
-SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkSet& landmarks,
+SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkSet& landmarks, const HeadFrame* frame,
                                            const SkullGuideOptions& o) {
   require_input(!skull.triangles.empty(), source, "skull", "the skull mesh is empty");
   require_input(o.min_aperture_depth_mm > 0 && o.aperture_depth_cap_mm > o.min_aperture_depth_mm && o.edge_level > 0 &&
@@ -102,7 +107,7 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
                 source, "options", "steps, depths and widths must be positive");
   SkullGuideMeasurement m;
   Vec3 lateral, up;
-  m.head_frame = head_directions(landmarks, lateral, up);
+  m.head_frame = head_directions(landmarks, frame, lateral, up);
   const Vec3 anterior = lateral.cross(up);
   m.guides.lateral = lateral;
   m.guides.up = up;

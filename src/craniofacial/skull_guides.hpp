@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "craniofacial/face_guides.hpp"
+#include "craniofacial/head_frame.hpp"
 #include "craniofacial/landmark_set.hpp"
 #include "geometry/tri_mesh.hpp"
 
@@ -47,7 +48,7 @@ struct SkullGuideMeasurement {
   FaceGuides guides;                  ///< lateral/up set; the measured values set, the others empty
   std::vector<std::string> measured;  ///< guide names set ("nasal_aperture", "nasal_spine", "mouth_corners")
   std::vector<std::string> missing;   ///< "name: why" for each guide that could not be measured
-  bool head_frame = false;            ///< directions from the landmarks' head frame (else LPS axes)
+  bool head_frame = false;            ///< directions from a head frame (given or the landmarks'), else LPS
   double aperture_width_mm = 0.0;     ///< of the widest line (0 when not measured)
   double aperture_height_mm = 0.0;    ///< `up` coordinate of that line
   double spine_length_mm = 0.0;       ///< ans in front of subspinale (0 when not measured)
@@ -56,8 +57,10 @@ struct SkullGuideMeasurement {
 /// Measures the guides on `skull` (closed or open mesh, mm, LPS) with its landmarks (canonical names).
 /// Throws InputError naming "skull guides" when the skull is empty or an option is not positive; a guide
 /// whose landmarks or features are missing is reported in `missing`, not thrown.
+/// `frame`, when given (e.g. the frame landmark detection found), sets the head directions; else they come
+/// from the landmarks' head frame when it can be made, else LPS axes.
 SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkSet& skull_landmarks,
-                                           const SkullGuideOptions& options = {});
+                                           const HeadFrame* frame = nullptr, const SkullGuideOptions& options = {});
 
 /// `measured` with every guide value that `given` sets replacing the measured one (lateral, up and the
 /// rule constants from `given` when it sets any value, else from `measured`).

@@ -73,7 +73,7 @@ TEST(SkullGuides, MissingLandmarksAreReportedAndAnEmptySkullIsRefused) {
   EXPECT_THROW(measure_skull_guides(TriMesh{}, LandmarkSet("x")), InputError);
   SkullGuideOptions bad;
   bad.sample_step_mm = 0.0;
-  EXPECT_THROW(measure_skull_guides(head.skull, LandmarkSet("x"), bad), InputError);
+  EXPECT_THROW(measure_skull_guides(head.skull, LandmarkSet("x"), nullptr, bad), InputError);
 }
 
 }  // namespace
