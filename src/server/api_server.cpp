@@ -81,8 +81,8 @@ void send_json(httplib::Response& res, int status, const nlohmann::json& body) {
   res.set_content(body.dump(), "application/json");
 }
 
-// The skull editor's answers and the frames of a run carry meshes (base64 float arrays, hundreds of kB that barely compress).
-// cpp-httplib 0.11 compresses "application/json" with brotli at its highest quality when the browser accepts
+// The skull editor's answers and the frames of a run carry meshes (base64 float arrays, hundreds of kB that barely
+// compress). cpp-httplib 0.11 compresses "application/json" with brotli at its highest quality when the browser accepts
 // it, which took 0.76 s for a 13.5k-vertex face (gzip 13 ms, none 1 ms, on loopback); it leaves this exact
 // type with its charset alone.
 void send_mesh_json(httplib::Response& res, int status, const nlohmann::json& body) {
