@@ -99,6 +99,7 @@ SkullSession::SkullSession(std::string id, std::shared_ptr<const TemplateHead> h
     return std::make_unique<Reconstruction>(*m_head, m_skull.mesh, landmarks, depths, options);
   });
   m_timings_ms["reconstruction"] = ms(watch.lap());
+  touch();  // idle from when the session is ready, not from when its building began
 }
 
 SkullSession::~SkullSession() = default;

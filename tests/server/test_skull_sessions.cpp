@@ -401,7 +401,8 @@ TEST_F(SkullApi, SessionLimitAndIdleExpiry) {
   options.served_dir = served;
   options.web_dir = FORENSIM_WEB_DIR;
   options.executable = FORENSIM_CLI_PATH;
-  options.skull_session_idle_s = 0.3;
+  // Long enough that the creation's answer (the meshes, slow under the sanitizers) arrives well within it.
+  options.skull_session_idle_s = 2.0;
   options.skull_templates = test::shared_skull_templates();
   ApiServer server(options);
   httplib::Client c("127.0.0.1", server.start());
@@ -409,7 +410,7 @@ TEST_F(SkullApi, SessionLimitAndIdleExpiry) {
   const auto a = ok(post(c, "/api/skull/sessions", quick_session()), 201);
   ASSERT_TRUE(a.is_object());
   ok(c.Get(session_path(a, "?geometry=0").c_str()));
-  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  std::this_thread::sleep_for(std::chrono::milliseconds(4500));
   error_of(c.Get(session_path(a).c_str()), 404);
   EXPECT_TRUE(ok(c.Get("/api/skull/sessions"))["sessions"].empty());
   server.stop();
