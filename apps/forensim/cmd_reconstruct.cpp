@@ -56,32 +56,6 @@ struct ReconstructArgs {
   std::string expressions;  ///< --expressions: comma-separated presets, or "none"
 };
 
-std::vector<std::string> split_expression_list(const std::string& text) {
-  std::vector<std::string> names;
-  if (text == "none") return names;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string name = text.substr(start, comma - start);
-    if (name.empty()) throw InputError("--expressions", text, "empty name in the list (use 'none' for no expressions)");
-    names.push_back(std::move(name));
-    start = comma + 1;
-  }
-  return names;
-}
-
-TemplateHeadOptions template_options(const std::string& detail) {
-  TemplateHeadOptions o;
-  if (detail == "coarse") {
-    o.skin_voxel_mm = 3.0;
-    o.skin_edge_mm = 6.0;
-    o.skull_voxel_mm = 3.0;
-    o.remesh_iterations = 2;
-    o.uv_resolution = 512;
-  }
-  return o;
-}
-
 std::string table_name(const std::string& name) {
   if (name == "rhine_1983") return "rhine_1983_sw_native_american_female_normal";
   return name;
@@ -118,7 +92,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
   if (typed("--samples")) job.samples = cli_job.samples;
   if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
-  if (typed("--expressions")) job.expressions = split_expression_list(a.expressions);
+  if (typed("--expressions")) job.expressions = parse_expression_list(a.expressions, "--expressions");
   if (a.no_interpolated) job.interpolated_landmarks = false;
   if (a.evaluate) job.evaluate = true;
   if (a.measure_guides) job.measure_guides = true;
@@ -196,7 +170,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (landmark_mode != "template" && landmark_mode != "auto") file_landmarks = read_landmarks(landmark_mode);
   timings.add("inputs", watch.lap());
 
-  const TemplateHead head = make_template_head(template_options(job.template_detail));
+  const TemplateHead head = make_template_head(template_head_options(job.template_detail));
   timings.add("template", watch.lap());
 
   Skull skull;
@@ -252,6 +226,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       : detection    ? "detected: the template's skull landmarks registered onto the skull (similarity, then "
                        "non-rigid) and refined by their definitions in the skull's head frame"
                      : "the template's skull landmarks (placed by their definitions)";
+  // The skull's head frame where the landmarks' origin gives it: detected, or the template's own.
+  const std::optional<HeadFrame> known_frame = detection                     ? std::optional(detection->frame)
+                                               : landmark_mode == "template" ? std::optional(template_head_frame(head))
+                                                                             : std::nullopt;
 
   // 4. The reconstruction: depth vectors, the fit with interpolated landmarks, the guides, the violations.
   ReconstructionOptions options;
@@ -259,11 +237,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (job.has_guides) options.guides = job.guides;
   nlohmann::json measured_guides = nullptr;
   if (job.measure_guides) {
-    std::optional<HeadFrame> guide_frame;
-    if (detection) guide_frame = detection->frame;
-    if (landmark_mode == "template") guide_frame = template_head_frame(head);
     const SkullGuideMeasurement m =
-        measure_skull_guides(skull.mesh, skull_landmarks_in, guide_frame ? &*guide_frame : nullptr);
+        measure_skull_guides(skull.mesh, skull_landmarks_in, known_frame ? &*known_frame : nullptr);
     if (any_guide(m.guides)) options.guides = merge_face_guides(m.guides, job.has_guides ? job.guides : FaceGuides{});
     measured_guides = {{"measured", m.measured},
                        {"missing", m.missing},
@@ -299,9 +274,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     double skin_iso = 0.0;
     const TriMesh real_skin = real_face_surface(*volume, skull.source, {}, &skin_iso);
     // The frame of the region: detected, the template's (its own landmarks), or from the file's Frankfort landmarks.
-    const HeadFrame frame = detection                     ? detection->frame
-                            : landmark_mode == "template" ? template_head_frame(head)
-                                                          : head_frame_from_skull(skull.mesh, skull_landmarks_in);
+    const HeadFrame frame = known_frame ? *known_frame : head_frame_from_skull(skull.mesh, skull_landmarks_in);
     LandmarkSet used("skull");
     for (const DepthVector& v : result.depth_vectors.vectors) used.add({v.bone_landmark, v.bone_mm, v.source, 1.0});
     const FaceRegionOptions region_options;

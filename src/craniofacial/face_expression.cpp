@@ -1,5 +1,6 @@
 #include "craniofacial/face_expression.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -55,6 +56,20 @@ bool has_side(const std::string& name) {
 
 std::vector<std::string> expression_preset_names() {
   return {"neutral", "smile", "frown", "worried", "surprise"};
+}
+
+std::vector<std::string> parse_expression_list(const std::string& text, const std::string& source) {
+  std::vector<std::string> names;
+  if (text == "none") return names;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string name = text.substr(start, comma - start);
+    if (name.empty()) throw InputError(source, text, "empty name in the list (use 'none' for no expressions)");
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
+    start = comma + 1;
+  }
+  return names;
 }
 
 MuscleActivations expression_preset(const std::string& name) {

@@ -23,6 +23,11 @@ using MuscleActivations = std::map<std::string, double>;
 /// Names of the presets: "neutral", "smile", "frown", "worried", "surprise".
 std::vector<std::string> expression_preset_names();
 
+/// Preset names from a comma-separated list as users write them ("smile,frown"; "none": no expressions),
+/// in the order given, each once. Throws InputError(source, text, ...) for an empty name; the names are not
+/// checked against the presets (expression_preset() does, naming the closest one).
+std::vector<std::string> parse_expression_list(const std::string& text, const std::string& source = "expressions");
+
 /// A preset's activations (by bilateral names). Throws InputError for an unknown preset, with the closest
 /// name ("did you mean ...").
 MuscleActivations expression_preset(const std::string& name);

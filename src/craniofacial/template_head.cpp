@@ -464,6 +464,20 @@ std::vector<PhantomSkullLandmark> head_phantom_skull_landmarks() {
   return out;
 }
 
+TemplateHeadOptions template_head_options(const std::string& detail) {
+  TemplateHeadOptions o;
+  if (detail == "coarse") {
+    o.skin_voxel_mm = 3.0;
+    o.skin_edge_mm = 6.0;
+    o.skull_voxel_mm = 3.0;
+    o.remesh_iterations = 2;
+    o.uv_resolution = 512;
+  } else if (detail != "full") {
+    throw InputError("template detail", detail, "unknown (known: full, coarse)");
+  }
+  return o;
+}
+
 TemplateHead make_template_head(const TemplateHeadOptions& options) {
   const char* const source = "template head options";
   require_input(options.skin_voxel_mm >= 0.5 && options.skin_voxel_mm <= 5.0, source, "skin_voxel_mm",

@@ -72,6 +72,11 @@ struct TemplateHead {
   double seconds_skin = 0.0, seconds_skull = 0.0, seconds_landmarks = 0.0, seconds_atlas = 0.0;
 };
 
+/// The template options of a detail level, as `forensim reconstruct --template-detail` and the skull editor
+/// name them: "full" (the defaults) or "coarse" (3 mm voxels, 6 mm edges: quicker). Throws InputError for
+/// other names.
+TemplateHeadOptions template_head_options(const std::string& detail);
+
 /// Builds the template head (deterministic). Throws InputError for options out of range (skin_voxel_mm and
 /// skull_voxel_mm in [0.5, 5], skin_edge_mm in [skin_voxel_mm / 2, 15]) and NumericError if a landmark
 /// cannot be found on the phantom.

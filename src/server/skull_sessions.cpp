@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "craniofacial/face_expression.hpp"
 #include "server/api_error.hpp"
 
 namespace forensim {
@@ -91,18 +92,11 @@ nlohmann::json SkullSessions::list() {
 
 std::vector<std::string> expression_list(const std::string& text) {
   if (text.empty()) return {"smile", "frown", "surprise"};
-  std::vector<std::string> names;
-  if (text == "none") return names;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string name = text.substr(start, comma - start);
-    if (name.empty())
-      throw ApiError(400, "empty expression name in '" + text + "' (use 'none' for none)", "expressions");
-    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
-    start = comma + 1;
+  try {
+    return parse_expression_list(text, "expressions");
+  } catch (const InputError& e) {
+    throw ApiError(400, e.problem() + " in '" + text + "'", "expressions");
   }
-  return names;
 }
 
 }  // namespace forensim

@@ -27,8 +27,4 @@ class SkullTemplates {
   Entry m_full, m_coarse;
 };
 
-/// The template options of a detail level ("full": the defaults; "coarse": 3 mm voxels, 6 mm edges), as
-/// `forensim reconstruct --template-detail` uses them. Throws InputError for other names.
-TemplateHeadOptions template_head_options(const std::string& detail);
-
 }  // namespace forensim

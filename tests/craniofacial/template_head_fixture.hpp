@@ -6,15 +6,7 @@
 namespace forensim::test {
 
 inline const TemplateHead& coarse_template_head() {
-  static const TemplateHead head = [] {
-    TemplateHeadOptions options;
-    options.skin_voxel_mm = 3.0;
-    options.skin_edge_mm = 6.0;
-    options.skull_voxel_mm = 3.0;
-    options.remesh_iterations = 2;
-    options.uv_resolution = 512;
-    return make_template_head(options);
-  }();
+  static const TemplateHead head = make_template_head(template_head_options("coarse"));
   return head;
 }
 
