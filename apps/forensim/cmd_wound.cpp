@@ -3,6 +3,7 @@
 // material, close-up renders of the phases on the displaced mesh, and a JSON description of the timeline.
 // Everything is checked before the output folder is created, so bad input writes nothing.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -269,51 +270,43 @@ int run_wound(const WoundArgs& a) {
     settings.width = settings.height = a.picture_size;
     settings.samples_per_pixel = a.samples;
     settings.seed = a.seed;
+    // The displaced mesh with one map set, seen `from` a camera.
+    auto render_maps = [&](const MapSet& maps, const Camera& from) {
+      Scene scene;
+      SurfaceMaterial material = SurfaceMaterial::skin();
+      material.colour_source = ColourSource::texture;
+      material.base_colour = Vec3f(1, 1, 1);
+      material.base_texture = std::make_shared<Image>(maps.color);
+      material.normal_map = std::make_shared<Image>(normal_from_height(maps.height_mm, tpm));
+      scene.add(displaced(mesh, maps.height_mm), material, "skin");
+      scene.camera = from;
+      return Renderer(scene).render(from, settings);
+    };
     auto render_shots = [&](const std::vector<Shot>& list) {
       std::vector<SheetCell> cells;
-      for (const auto& s : list) {
-        Scene scene;
-        SurfaceMaterial material = SurfaceMaterial::skin();
-        material.colour_source = ColourSource::texture;
-        material.base_colour = Vec3f(1, 1, 1);
-        material.base_texture = std::make_shared<Image>(s.maps.color);
-        material.normal_map = std::make_shared<Image>(normal_from_height(s.maps.height_mm, tpm));
-        scene.add(displaced(mesh, s.maps.height_mm), material, "skin");
-        scene.camera = camera;
-        const Renderer renderer(scene);
-        cells.push_back({renderer.render(camera, settings), s.caption});
-      }
+      for (const auto& s : list) cells.push_back({render_maps(s.maps, camera), s.caption});
       return cells;
     };
     const auto key_cells = render_shots(keys);
     write_png(run.file("timeline_keys.png"), make_sheet(key_cells, std::min<int>(5, static_cast<int>(key_cells.size())),
                                                         "forensim wound: " + job.type + " key positions"));
     run.add_output("timeline_keys.png");
-    // The whole mesh, seen from the wound's side, at the key with the most relief (the scab): where on the
-    // body the wound sits, beside the close-ups.
-    {
-      std::size_t relief = keys.size() - 1;
-      for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i].prefix.find("scab") != std::string::npos && keys[i].prefix.find("forming") == std::string::npos)
-          relief = i;
-      const BoundingBox box = bounding_box(mesh.positions);
-      const double size = (box.max - box.min).norm();
-      const double far = 1.1 * size / (2.0 * std::tan(15.0 * M_PI / 180.0));
-      const Camera overview = Camera::look_at(surface + normal * far, surface, up, 30.0);
-      Scene scene;
-      SurfaceMaterial material = SurfaceMaterial::skin();
-      material.colour_source = ColourSource::texture;
-      material.base_colour = Vec3f(1, 1, 1);
-      material.base_texture = std::make_shared<Image>(keys[relief].maps.color);
-      material.normal_map = std::make_shared<Image>(normal_from_height(keys[relief].maps.height_mm, tpm));
-      scene.add(displaced(mesh, keys[relief].maps.height_mm), material, "skin");
-      scene.camera = overview;
-      const Renderer renderer(scene);
-      write_png(run.file("overview.png"),
-                make_sheet({{renderer.render(overview, settings), keys[relief].caption + ", whole mesh"}}, 1,
-                           "forensim wound: " + job.type));
-      run.add_output("overview.png");
+    // The whole mesh, seen from the wound's side, at the key with the most relief (the abrasion's scab; the
+    // middle key when none has any): where on the body the wound sits, beside the close-ups.
+    std::size_t relief = keys.size() / 2;
+    float most = 0.0f;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const auto& h = keys[i].maps.height_mm.data();
+      const float top = h.empty() ? 0.0f : *std::max_element(h.begin(), h.end());
+      if (top > most) most = top, relief = i;
     }
+    const BoundingBox box = bounding_box(mesh.positions);
+    const double far = 1.1 * (box.max - box.min).norm() / (2.0 * std::tan(15.0 * M_PI / 180.0));
+    const Camera overview = Camera::look_at(surface + normal * far, surface, up, 30.0);
+    write_png(run.file("overview.png"),
+              make_sheet({{render_maps(keys[relief].maps, overview), keys[relief].caption + ", whole mesh"}}, 1,
+                         "forensim wound: " + job.type));
+    run.add_output("overview.png");
     if (!shots.empty()) {
       const auto time_cells = render_shots(shots);
       write_png(run.file("timeline_times.png"),

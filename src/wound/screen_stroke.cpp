@@ -4,7 +4,6 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "spatial/ray_caster.hpp"
 
 namespace forensim {
 
@@ -19,6 +18,11 @@ Vec3 barycentric_from_areas(const Vec3& a, const Vec3& b, const Vec3& c, const V
 
 RecordedStroke record_screen_stroke(const TriMesh& mesh, const StrokeScreen& screen,
                                     const std::vector<Vec2>& screen_points, double radius_mm) {
+  return record_screen_stroke(mesh, RayCaster(mesh), screen, screen_points, radius_mm);
+}
+
+RecordedStroke record_screen_stroke(const TriMesh& mesh, const RayCaster& caster, const StrokeScreen& screen,
+                                    const std::vector<Vec2>& screen_points, double radius_mm) {
   const std::string source = "wound stroke";
   if (mesh.triangle_uvs.size() != mesh.triangles.size() || mesh.uvs.empty()) {
     throw InputError(source, "mesh", "the mesh has no UV coordinates to record");
@@ -32,7 +36,6 @@ RecordedStroke record_screen_stroke(const TriMesh& mesh, const StrokeScreen& scr
   RecordedStroke out;
   out.stroke.radius_mm = radius_mm;
   if (screen_points.empty()) throw InputError(source, "screen", "the stroke has no points");
-  const RayCaster caster(mesh);
   for (std::size_t i = 0; i < screen_points.size(); ++i) {
     const Vec2& s = screen_points[i];
     if (!std::isfinite(s.x()) || !std::isfinite(s.y())) {

@@ -11,6 +11,7 @@
 #include "core/types.hpp"
 #include "geometry/tri_mesh.hpp"
 #include "render/camera.hpp"
+#include "spatial/ray_caster.hpp"
 #include "wound/wound_canvas.hpp"
 
 namespace forensim {
@@ -55,6 +56,9 @@ struct RecordedStroke {
 /// "wound stroke" when the mesh has no UVs, a point is not finite, the screen size is not positive, or no
 /// point hits the mesh.
 RecordedStroke record_screen_stroke(const TriMesh& mesh_with_uvs, const StrokeScreen& screen,
+                                    const std::vector<Vec2>& screen_points, double radius_mm);
+/// The same with a ray caster built once on `mesh_with_uvs` (for several strokes on one mesh).
+RecordedStroke record_screen_stroke(const TriMesh& mesh_with_uvs, const RayCaster& caster, const StrokeScreen& screen,
                                     const std::vector<Vec2>& screen_points, double radius_mm);
 
 }  // namespace forensim

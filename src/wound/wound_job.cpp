@@ -1,6 +1,7 @@
 #include "wound/wound_job.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
 #include "geometry/bounding_box.hpp"
@@ -52,8 +53,7 @@ StrokeScreen read_stroke_screen(const JobNode& node, const TriMesh& mesh) {
     }
     return screen;
   }
-  std::vector<std::string> views = view_names();
-  const std::string view = node.get_choice("view", "front", views);
+  const std::string view = node.get_choice("view", "front", view_names());
   FramingOptions framing;
   framing.vertical_fov_deg = fov;
   // "lps": CT and phantom meshes (+Z up, -Y front); "y_up": glTF and most scans (+Y up, +Z front).
@@ -86,6 +86,7 @@ WoundJob read_wound_job(const JobNode& root, const TriMesh& mesh, const std::opt
   job.abrasion.thesis_closing_distance = ab.get<bool>("thesis_closing_distance", false);
 
   const auto strokes = root.children("strokes");
+  std::optional<RayCaster> caster;  // built on the first screen stroke, shared by the others
   if (strokes.empty()) root.fail("strokes", "at least one stroke is needed");
   for (std::size_t s = 0; s < strokes.size(); ++s) {
     const JobNode& node = strokes[s];
@@ -108,7 +109,8 @@ WoundJob read_wound_job(const JobNode& root, const TriMesh& mesh, const std::opt
         points.push_back(Vec2(p[0], p[1]));
       }
       try {
-        stroke = record_screen_stroke(mesh, screen, points, stroke.radius_mm).stroke;
+        if (!caster) caster.emplace(mesh);
+        stroke = record_screen_stroke(mesh, *caster, screen, points, stroke.radius_mm).stroke;
       } catch (const InputError& err) {
         node.fail("screen", err.problem());
       }
