@@ -106,6 +106,18 @@ struct CorotationalSolver::Impl {
 
   double strain_of(std::size_t t) const { return rigid[t] != 0 ? 0.0 : shrinkage[t]; }
 
+  /// Compression barrier energy (internal units) of tet t at deformation gradient f; adds its corner forces
+  /// to `fc`. Rigid tets have none.
+  double barrier(std::size_t t, const Mat3& f, Mat34& fc) const {
+    if (rigid[t] != 0 || !(settings.volume_barrier_ratio > 0.0)) return 0.0;
+    Mat3 gradient;
+    const double psi = tet_volume_barrier(f, shrinkage[t], lame[t][0] + 2.0 * lame[t][1] / 3.0,
+                                          settings.volume_barrier_ratio, &gradient);
+    if (psi == 0.0) return 0.0;
+    fc -= volumes[t] * gradient * grads[t];
+    return volumes[t] * psi;
+  }
+
   Mat34 corners(const Eigen::VectorXd& x, std::size_t t) const {
     Mat34 c;
     for (int a = 0; a < 4; ++a) c.col(a) = x.segment<3>(3 * static_cast<Eigen::Index>(tets[t][a]));
@@ -148,8 +160,8 @@ struct CorotationalSolver::Impl {
             const Mat3 rf = r.transpose() * f;
             Mat3 e = 0.5 * (rf + rf.transpose());
             e.diagonal().array() -= 1.0 + strain_of(t);
-            tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum();
-            const Mat34 fc = -volumes[t] * (r * sigma) * grads[t];
+            Mat34 fc = -volumes[t] * (r * sigma) * grads[t];
+            tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, f, fc);
             for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
           }
         },
@@ -498,6 +510,8 @@ int CorotationalSolver::solve_quasi_static(ElasticState& state) {
   s.update_overall_rotation(x);
   Eigen::VectorXd force, trial_force, trial(x.size());
   double energy = s.evaluate(x, force);  // s.rotations are those at x from here on
+  if (!std::isfinite(energy))
+    throw NumericError("corotational quasi-static solve: a tet of the start shape is turned over");
   s.cg_iterations = 0;
   int iteration = 0;
   while (iteration < s.settings.quasi_static_max_iterations) {
@@ -517,12 +531,21 @@ int CorotationalSolver::solve_quasi_static(ElasticState& state) {
     // derivative of R), so full steps can overshoot where shrinkage pre-stresses stiff and soft tets
     // against each other. dx is a descent direction (CG on an SPD system from 0), so halving always helps.
     const double slope = parallel_dot(force, dx);  // -dPi/dalpha at alpha = 0
+    // A turned-over tet has infinite energy (the compression barrier), so it is never accepted.
     double alpha = 1.0, trial_energy = energy;
+    bool accepted = false;
     for (int halving = 0; halving < 30; ++halving) {
       trial = x + alpha * dx;
       trial_energy = s.evaluate(trial, trial_force);
-      if (trial_energy <= energy - 1e-4 * alpha * slope + 1e-13 * std::abs(energy)) break;
+      if (trial_energy <= energy - 1e-4 * alpha * slope + 1e-13 * std::abs(energy)) {
+        accepted = true;
+        break;
+      }
       alpha *= 0.5;
+    }
+    if (!accepted && !std::isfinite(trial_energy)) {
+      s.evaluate(x, force);  // no admissible step: stay (s.rotations back at x)
+      break;
     }
     const double largest = alpha * dx.cwiseAbs().maxCoeff();
     x.swap(trial);
@@ -550,7 +573,8 @@ std::vector<Vec3> CorotationalSolver::elastic_forces(const std::vector<Vec3>& po
     const Mat3 f = tet_field_gradient(s.grads[t], s.corners(x, t));
     const Mat3 r = polar_rotation(f);
     const Mat3 sigma = corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t));
-    const Mat34 fc = -s.volumes[t] * (r * sigma) * s.grads[t];
+    Mat34 fc = -s.volumes[t] * (r * sigma) * s.grads[t];
+    s.barrier(t, f, fc);
     for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(s.tets[t][a])] += fc.col(a);
   }
   for (Vec3& f : out) f /= internal_force_per_n;
@@ -569,8 +593,10 @@ double CorotationalSolver::elastic_energy(const std::vector<Vec3>& positions_mm)
     const Mat3 rf = r.transpose() * f;
     Mat3 e = 0.5 * (rf + rf.transpose());
     e.diagonal().array() -= 1.0 + s.strain_of(t);
+    Mat34 unused;
     energy +=
-        0.5 * s.volumes[t] * e.cwiseProduct(corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t))).sum();
+        0.5 * s.volumes[t] * e.cwiseProduct(corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t))).sum() +
+        s.barrier(t, f, unused.setZero());
   }
   return energy / internal_force_per_n;  // internal energy unit kg mm^2/s^2 = mN mm
 }

@@ -6,7 +6,9 @@
 /// Per tet e with rest corners x0_e, stiffness K_e = V B^T C B (eq. 26) and rotation R_e from the polar
 /// decomposition of its deformation gradient, the elastic force is
 ///   f_e = -R_e (K_e (R_e^T x_e - x0_e) - V B^T C eps0_e),   eps0_e = s_e (1, 1, 1, 0, 0, 0)      (eqs. 30, 31)
-/// i.e. minus the gradient of V/2 (eps - eps0):C:(eps - eps0) with eps the corotated small strain.
+/// i.e. minus the gradient of V/2 (eps - eps0):C:(eps - eps0) with eps the corotated small strain. Shrinking
+/// tets add a compression barrier (tet_volume_barrier) that only acts on a tet squeezed below half of its
+/// target volume: strongly drying tissue next to bone would otherwise be squeezed through zero volume.
 ///
 /// Shrinkage: s_e is the linear eigenstrain of tet e. For a volume ratio S_v = V / V0 (eq. 28) use
 /// s = S_v^(1/3) - 1 (shrinkage_strain): zero at the start, and an unconstrained body with uniform s takes
@@ -93,6 +95,10 @@ struct CorotationalSettings {
   /// the warped stiffness is not the exact tangent, so each Newton step cuts the error by a factor of about
   /// the strain anyway and solving it more exactly buys nothing.
   double newton_forcing = 0.05;
+  /// r0 of the compression barrier (tet_volume_barrier, with kappa the tet's bulk modulus): a shrinking tet
+  /// squeezed below this share of its target volume (1 + s)^3 V0 is pushed back, and none turns over. The
+  /// quasi-static line search never accepts a turned-over tet. 0: no barrier.
+  double volume_barrier_ratio = 0.5;
   ElasticPreconditioner preconditioner = ElasticPreconditioner::rest_cholesky;
   double cg_tolerance = 1e-10;  ///< dynamic step: relative residual of its CG solve
   int cg_max_iterations = 2000;

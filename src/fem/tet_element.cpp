@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "geometry/mesh_measures.hpp"
@@ -173,6 +174,26 @@ double tet_corotational_energy(const TetCorners& x, const Mat3& rest_edge_invers
   Eigen::Matrix<double, 6, 1> eps;
   eps << e(0, 0) - s, e(1, 1) - s, e(2, 2) - s, 2.0 * e(0, 1), 2.0 * e(1, 2), 2.0 * e(2, 0);
   return 0.5 * volume * eps.dot(elasticity * eps);
+}
+
+double tet_volume_barrier(const Mat3& deformation_gradient, double s, double kappa, double r0, Mat3* gradient) {
+  if (gradient != nullptr) gradient->setZero();
+  if (!(r0 > 0.0) || !(kappa > 0.0)) return 0.0;
+  const double target = (1.0 + s) * (1.0 + s) * (1.0 + s);
+  const Mat3& f = deformation_gradient;
+  const double r = f.determinant() / target;
+  if (r >= r0) return 0.0;
+  if (!(r > 0.0)) return std::numeric_limits<double>::infinity();
+  const double d = r - r0;
+  const double l = std::log(r / r0);
+  if (gradient != nullptr) {
+    Mat3 cofactor;  // d det F / dF
+    cofactor.col(0) = f.col(1).cross(f.col(2));
+    cofactor.col(1) = f.col(2).cross(f.col(0));
+    cofactor.col(2) = f.col(0).cross(f.col(1));
+    *gradient = (kappa * (-2.0 * d * l - d * d / r) / target) * cofactor;
+  }
+  return -kappa * d * d * l;
 }
 
 Vec12 stack_corners(const TetCorners& p) {

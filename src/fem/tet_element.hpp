@@ -119,6 +119,17 @@ Vec12 tet_corotational_force(const Mat12& k, const Mat3& r, const Vec12& x, cons
 double tet_corotational_energy(const TetCorners& x, const Mat3& rest_edge_inverse, double volume,
                                const Mat6& elasticity, double s);
 
+/// Compression barrier of a shrinking tet (beyond eqs. 28-31). The corotated linear model alone lets a tet that
+/// its neighbours squeeze sideways shrink through zero volume and turn over (its energy stays finite there), which
+/// drying tissue cannot do: the dry solid keeps a volume. The barrier's energy per rest volume is
+///   psi(F) = kappa b(r),  r = det F / J_t,  J_t = (1 + s)^3 (the volume ratio the eigenstrain s aims at),
+///   b(r) = -(r - r0)^2 ln(r / r0) for 0 < r < r0, 0 for r >= r0, +infinity for r <= 0
+/// (the barrier of Li et al. 2020, "Incremental potential contact"). b is C2 at r0 (b = b' = b'' = 0), so every
+/// tet that keeps at least r0 of its target volume feels nothing. kappa: a modulus (the solver uses the bulk
+/// modulus lambda + 2 mu / 3). r0 <= 0 or kappa <= 0: no barrier (returns 0). `gradient`, when not null,
+/// receives d psi / dF = kappa b'(r) / J_t cof(F) (zero outside the barrier's range).
+double tet_volume_barrier(const Mat3& deformation_gradient, double s, double kappa, double r0, Mat3* gradient);
+
 /// Stacks four corners into a 12-vector.
 Vec12 stack_corners(const TetCorners& p);
 

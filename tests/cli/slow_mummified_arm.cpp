@@ -1,14 +1,14 @@
-// Slow suite: the small arm phantom mummified by `forensim mummify` (60 days at 45 C, 10 % RH and 3 m/s wind: the
-// flesh keeps under a third of its water and the skin's moisture ratio falls to about 0.1) with the position-based
-// skin and Figure 8's three wrinkle controls on the same drying volume (--figure8). Measured properties of the dried
-// skin (Frerichs, Vidler and Gatzidis 2020, sections 2 and 8): no skin triangle turned over against its rest normal
-// or passes through another; the skin clings to the shrunk volume over the hand and wrist (its mean distance to the
-// bone surface there is within 15 % of the skin glued to the volume) and that distance falls to under 0.65 of the
-// start. (The issue asks for a fall by half: the volume does not shrink that far. Its quasi-static shape solve turns
-// a tet over after about day 71 in this environment, at about 26 % of the water, so day 60 is the driest state the
-// small arm reaches; there the glued skin itself is at about 0.6 of the start.) Figure 8's sets order the wrinkles:
-// the dried skin slides and folds within r_max of the volume (eqs. 33 and 35), so the wrinkle height grows with
-// r_max (and falls with the damping) by at least 1.3 from set to set, and no set's skin turns over or crosses itself.
+// Slow suite: the small arm phantom mummified by `forensim mummify` (a year at 45 C, 10 % RH and 3 m/s wind, in
+// four-day steps: the flesh keeps about an eighth of its water and the skin's moisture ratio falls to about 0.02)
+// with the position-based skin and Figure 8's three wrinkle controls on the same drying volume (--figure8).
+// Measured properties of the dried skin (Frerichs, Vidler and Gatzidis 2020, sections 2 and 8): no skin triangle
+// turned over against its rest normal or passes through another; the skin clings to the shrunk volume over the
+// hand and wrist (its mean distance to the bone surface there is within 15 % of the skin glued to the volume) and
+// that distance falls by at least half (measured 12.62 -> 6.14 mm). The volume's compression barrier
+// (fem/tet_element.hpp) keeps every tet from turning over however far the flesh dries. Figure 8's sets order the
+// wrinkles: the dried skin slides and folds within r_max of the volume (eqs. 33 and 35), so the wrinkle height
+// grows with r_max (and falls with the damping) by at least 1.3 from set to set (measured 0.075, 0.118 and
+// 0.182 mm), and no set's skin turns over or crosses itself.
 
 #include <gtest/gtest.h>
 
@@ -29,12 +29,13 @@ TEST(SlowMummifiedArm, SkinClingsToTheShrunkVolumeAndStaysClean) {
   const auto dir = test::scratch_dir("mummified_arm");
   std::filesystem::remove_all(dir / "run");
   const auto r = run_cli("mummify -o " + (dir / "run").string() +
-                         " --days 60 --frames 3 --step-hours 24 --temperature 45 --humidity 10 --wind 3 --figure8 "
+                         " --days 364 --frames 3 --step-hours 96 --temperature 45 --humidity 10 --wind 3 --figure8 "
                          "--picture-size 160");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::cout << r.output << "\n";
   const auto facts = nlohmann::json::parse(read_file(dir / "run" / "run.json")).at("facts");
-  EXPECT_LT(facts.at("water_percent").get<double>(), 35.0);  // fully dried, as far as the volume goes
+  EXPECT_LT(facts.at("water_percent").get<double>(), 20.0);  // fully dried
+  EXPECT_EQ(facts.at("inverted_tets"), 0);
   EXPECT_EQ(facts.at("skin_pbd"), true);
 
   // Hand (palm) and wrist: the mean skin-to-bone distance over their skin vertices, start and end.
@@ -56,13 +57,13 @@ TEST(SlowMummifiedArm, SkinClingsToTheShrunkVolumeAndStaysClean) {
   glued /= count;
   std::printf("hand and wrist skin-to-bone: %.2f mm -> %.2f mm (glued to the volume: %.2f mm)\n", start, end, glued);
   EXPECT_LE(end, 1.15 * glued);
-  EXPECT_LE(end, 0.65 * start);
+  EXPECT_LE(end, 0.5 * start);
 
   // A clean surface at the end.
   EXPECT_EQ(facts.at("skin_inverted_triangles"), 0);
   EXPECT_EQ(facts.at("skin_self_intersections"), 0);
 
-  // Figure 8: small, medium and large wrinkles (measured 0.061, 0.091 and 0.137 mm), each set a clean surface.
+  // Figure 8: small, medium and large wrinkles, each set a clean surface.
   const auto& sets = facts.at("figure8");
   ASSERT_EQ(sets.size(), 3u);
   for (std::size_t k = 0; k < 3; ++k) {

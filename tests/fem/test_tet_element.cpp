@@ -216,3 +216,45 @@ TEST(TetElement, CorotatedStressGivesTheElementForceAndStiffness) {
     EXPECT_NEAR(product(i % 3, i / 3), expected_product[i], 1e-10 * expected_product.norm()) << i;
   }
 }
+
+TEST(TetElement, VolumeBarrierIsZeroAboveItsRangeAndInfiniteWhenTurnedOver) {
+  const double s = -0.3, kappa = 7.0, r0 = 0.5;
+  const double target = std::pow(1.0 + s, 3);
+  const Mat3 q = rotation(0.7, Vec3(1, 2, -1));
+  Mat3 gradient;
+  // A rotated copy at 0.6 of the target volume: outside the barrier's range.
+  EXPECT_EQ(tet_volume_barrier(std::cbrt(0.6 * target) * q, s, kappa, r0, &gradient), 0.0);
+  EXPECT_EQ(gradient.norm(), 0.0);
+  // Inside: positive, growing as the tet is squeezed; infinite once it turns over.
+  const double at_04 = tet_volume_barrier(std::cbrt(0.4 * target) * q, s, kappa, r0, nullptr);
+  const double at_01 = tet_volume_barrier(std::cbrt(0.1 * target) * q, s, kappa, r0, nullptr);
+  EXPECT_GT(at_04, 0.0);
+  EXPECT_GT(at_01, at_04);
+  EXPECT_NEAR(at_04, -kappa * 0.01 * std::log(0.8), 1e-12);
+  Mat3 flipped = q;
+  flipped.col(2) *= -0.5;
+  EXPECT_TRUE(std::isinf(tet_volume_barrier(flipped, s, kappa, r0, nullptr)));
+  // Switched off.
+  EXPECT_EQ(tet_volume_barrier(std::cbrt(0.1 * target) * q, s, kappa, 0.0, nullptr), 0.0);
+}
+
+TEST(TetElement, VolumeBarrierGradientMatchesFiniteDifferences) {
+  const double s = -0.2, kappa = 3.0, r0 = 0.5;
+  Mat3 f;
+  f << 0.45, 0.08, -0.03, -0.05, 0.52, 0.06, 0.02, -0.04, 0.38;  // det F / (1 + s)^3 about 0.18
+  Mat3 gradient;
+  const double psi = tet_volume_barrier(f, s, kappa, r0, &gradient);
+  ASSERT_GT(psi, 0.0);
+  const double h = 1e-7;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      Mat3 plus = f, minus = f;
+      plus(i, j) += h;
+      minus(i, j) -= h;
+      const double fd =
+          (tet_volume_barrier(plus, s, kappa, r0, nullptr) - tet_volume_barrier(minus, s, kappa, r0, nullptr)) /
+          (2.0 * h);
+      EXPECT_NEAR(gradient(i, j), fd, 1e-6 * gradient.norm()) << i << ", " << j;
+    }
+  }
+}
