@@ -34,6 +34,9 @@
 #include "mummify_skin_motion.hpp"
 #include "pbd/wrinkle_measure.hpp"
 #include "pictures.hpp"
+#include "render/camera.hpp"
+#include "render/colour_bar.hpp"
+#include "render/renderer.hpp"
 #include "render/sheet.hpp"
 #include "tet_io/pvd_writer.hpp"
 #include "tet_io/vtu_writer.hpp"
@@ -492,7 +495,20 @@ int run_mummify(const MummifyArgs& a) {
                                                                    settings, kind + ", " + caption));
     for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
     if (!figure8.empty()) {
-      std::vector<SheetCell> sets;
+      // Top row: the three skins as they look; bottom row: a close-up (the wrist and palm when the model has them)
+      // of each skin's fine lift-off from the skin glued to the volume (wrinkle_lift_off_mm), on one scale.
+      std::vector<SheetCell> sets, lifts;
+      std::vector<std::vector<double>> lift_off;
+      for (const auto& set : figure8)
+        lift_off.push_back(wrinkle_lift_off_mm(set->positions(), glued, model.body.skin.triangles));
+      // 2.5 times the largest RMS height: the strongest folds saturate, the pattern stays readable.
+      const double range = std::max(2.5 * *std::max_element(figure8_height.begin(), figure8_height.end()), 1e-3);
+      BoundingBox close_up;
+      for (std::size_t v = 0; v < model.body.skin_vertex_parts.size(); ++v) {
+        const std::string& part = model.body.part_names[static_cast<std::size_t>(model.body.skin_vertex_parts[v])];
+        if (part == "wrist" || part == "palm") close_up.extend(glued[v]);
+      }
+      if (close_up.empty()) close_up = bounding_box(glued);
       for (std::size_t k = 0; k < figure8.size(); ++k) {
         SkinFrame f = skin_frames.back();
         f.positions = figure8[k]->positions();
@@ -501,10 +517,28 @@ int run_mummify(const MummifyArgs& a) {
         scene.add(mesh, material_from_name("vertex", mesh));
         const WrinkleControls c = WrinkleControls::figure8(static_cast<int>(k));
         char text[96];
-        std::snprintf(text, sizeof text, "(%.3f, %.2f): %.3f mm", c.r_max_relative, c.damping, figure8_height[k]);
+        std::snprintf(text, sizeof text, "%.3f, %.2f: %.3f mm", c.r_max_relative, c.damping, figure8_height[k]);
         sets.push_back({render_view(std::move(scene), settings, to_string(views.outside), views.axes), text});
+        TriMesh lifted = mesh;
+        lifted.vertex_fields.scalars["lift_off_mm"] = lift_off[k];
+        Scene field;
+        field.add(lifted, SurfaceMaterial::field("lift_off_mm", -range, range, ColormapName::blue_white_red));
+        FramingOptions framing;
+        framing.axes = views.axes;
+        field.environment.up = views.axes.up;
+        field.camera = frame_view(close_up, view_from_name(to_string(views.outside)),
+                                  static_cast<double>(settings.width) / settings.height, framing);
+        lifts.push_back({render(field, settings), "lift-off, close-up"});
       }
-      write_png(run.file("figure8.png"), make_sheet(sets, 3, kind + ", " + caption + ": Figure 8 (r_max, damping)"));
+      for (SheetCell& cell : lifts) sets.push_back(std::move(cell));
+      ColourBar bar;
+      bar.colormap = Colormap(ColormapName::blue_white_red);
+      bar.min = -range;
+      bar.max = range;
+      bar.title = "lift-off";
+      bar.unit = "mm";
+      write_png(run.file("figure8.png"),
+                with_colour_bar(make_sheet(sets, 3, kind + ", " + caption + ": Figure 8 (r_max, damping)"), bar));
       run.add_output("figure8.png");
     }
     run.timings().add("pictures", picture_watch.seconds());

@@ -98,33 +98,59 @@ WrinkleMeasure wrinkle_measure(const std::vector<Vec3>& positions, const std::ve
   return out;
 }
 
-WrinkleSize wrinkle_size(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
-                         const std::vector<Tri>& triangles, int smoothing_steps,
-                         const std::vector<std::uint8_t>& vertex_mask) {
+namespace {
+
+/// The fine lift-off vectors f_i and the reference's vertex normals n_i (see wrinkle_size), after the checks.
+struct FineLiftOff {
+  std::vector<Vec3> fine, normals;
+};
+
+FineLiftOff fine_lift_off(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                          const std::vector<Tri>& triangles, int smoothing_steps,
+                          const std::vector<std::uint8_t>& vertex_mask, const std::string& source) {
   const std::size_t n = positions.size();
-  const std::string source = "wrinkle size";
   require_input(reference.size() == n, source, "reference",
                 "has " + std::to_string(reference.size()) + " vertices for " + std::to_string(n));
   require_input(vertex_mask.empty() || vertex_mask.size() == n, source, "vertex mask",
                 "has " + std::to_string(vertex_mask.size()) + " entries for " + std::to_string(n) + " vertices");
   require_input(smoothing_steps >= 0, source, "smoothing steps", "must be non-negative");
   check_indices(triangles, n, source);
-  auto in = [&](Index v) { return vertex_mask.empty() || vertex_mask[static_cast<std::size_t>(v)] != 0; };
   TriMesh glued;
   glued.positions = reference;
   glued.triangles = triangles;
-  const std::vector<Vec3> normals = vertex_normals(glued);
+  FineLiftOff out;
+  out.normals = vertex_normals(glued);
   std::vector<Vec3> lift(n);
-  for (std::size_t i = 0; i < n; ++i) lift[i] = (positions[i] - reference[i]).dot(normals[i]) * normals[i];
+  for (std::size_t i = 0; i < n; ++i) lift[i] = (positions[i] - reference[i]).dot(out.normals[i]) * out.normals[i];
   const std::vector<Vec3> smooth = taubin_smoothed(lift, triangles, smoothing_steps);
+  out.fine.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out.fine[i] = lift[i] - smooth[i];
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> wrinkle_lift_off_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                                        const std::vector<Tri>& triangles, int smoothing_steps) {
+  const FineLiftOff f = fine_lift_off(positions, reference, triangles, smoothing_steps, {}, "wrinkle lift-off");
+  std::vector<double> h(positions.size());
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = f.fine[i].dot(f.normals[i]);
+  return h;
+}
+
+WrinkleSize wrinkle_size(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                         const std::vector<Tri>& triangles, int smoothing_steps,
+                         const std::vector<std::uint8_t>& vertex_mask) {
+  const std::size_t n = positions.size();
+  const FineLiftOff f = fine_lift_off(positions, reference, triangles, smoothing_steps, vertex_mask, "wrinkle size");
+  auto in = [&](Index v) { return vertex_mask.empty() || vertex_mask[static_cast<std::size_t>(v)] != 0; };
   std::vector<double> h(n);
   double sum = 0.0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 fine = lift[i] - smooth[i];
-    h[i] = fine.dot(normals[i]);
+    h[i] = f.fine[i].dot(f.normals[i]);
     if (!in(static_cast<Index>(i))) continue;
-    sum += fine.squaredNorm();
+    sum += f.fine[i].squaredNorm();
     ++count;
   }
   WrinkleSize out;

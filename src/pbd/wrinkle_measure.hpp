@@ -48,6 +48,12 @@ WrinkleSize wrinkle_size(const std::vector<Vec3>& positions, const std::vector<V
                          const std::vector<Tri>& triangles, int smoothing_steps = 10,
                          const std::vector<std::uint8_t>& vertex_mask = {});
 
+/// The fine lift-off of every vertex (#S, mm), signed along the reference's vertex normal: h_i = f_i . n_i with
+/// f_i as in wrinkle_size (positive where the skin stands out of the reference, negative in a fold's trough). For
+/// false-colour pictures of the wrinkles. Throws InputError for mismatched sizes or indices out of range.
+std::vector<double> wrinkle_lift_off_mm(const std::vector<Vec3>& positions, const std::vector<Vec3>& reference,
+                                        const std::vector<Tri>& triangles, int smoothing_steps = 10);
+
 /// Wrinkle height of the skin at `positions` (#S) over `reference` (#S, same triangles), in mm: the skin's
 /// displacement along the reference's vertex normals, d_i = ((x_i - g_i) . n_i) n_i, less its Taubin-smoothed copy
 /// (`smoothing_steps` as above; smoothing is linear, so this is wrinkle_measure(d).rms_smooth_distance_mm): the

@@ -120,3 +120,26 @@ TEST(WrinkleSize, SmoothingKeepsFoldsAndDropsTheLiftOfAWholeRegion) {
   EXPECT_THROW(wrinkle_size(sheet.positions, {Vec3::Zero()}, sheet.triangles), InputError);
   EXPECT_THROW(wrinkle_size(sheet.positions, sheet.positions, {Tri{0, 1, 100000}}), InputError);
 }
+
+TEST(WrinkleSize, LiftOffFollowsTheWaveWithItsSign) {
+  // On the sheet with the normal +z, the per-vertex lift-off of a 2 mm wave (kept almost whole by the smoothing) is
+  // the wave itself: positive on its crests, negative in its troughs, its RMS the wrinkle height.
+  const TriMesh sheet = test::make_grid_sheet(120, 60, 0.5);
+  const std::vector<std::uint8_t> mask = interior(120, 60, 25);
+  const double amplitude = 0.3, wavelength = 2.0;
+  const std::vector<Vec3> x = waved(sheet, amplitude, wavelength);
+  const std::vector<double> h = wrinkle_lift_off_mm(x, sheet.positions, sheet.triangles);
+  ASSERT_EQ(h.size(), x.size());
+  double sum = 0.0, count = 0.0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (mask[i] == 0) continue;
+    const double wave = x[i].z() - sheet.positions[i].z();
+    if (std::abs(wave) > 0.5 * amplitude) {
+      EXPECT_GT(h[i] * wave, 0.0) << i;
+    }
+    sum += h[i] * h[i];
+    ++count;
+  }
+  EXPECT_NEAR(std::sqrt(sum / count), wrinkle_size(x, sheet.positions, sheet.triangles, 10, mask).height_mm, 1e-9);
+  EXPECT_THROW(wrinkle_lift_off_mm(x, std::vector<Vec3>(3), sheet.triangles), InputError);
+}
