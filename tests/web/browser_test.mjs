@@ -20,11 +20,12 @@
 // Measured and printed, not asserted: frames per second while the time slider of a 2048^2 wound map set is
 // moved every frame (requestAnimationFrame callbacks counted over 3 s; --fps-resolution N to change the
 // maps' size, 0 to skip), and the skull editor's time from a landmark drag's release to the updated face drawn.
-// Screenshots of every view go to --shots DIR when given; --only skull tests the skull editor alone
+// Screenshots of every view go to --shots DIR when given; --only skull tests the skull editor alone (--only
+// wound, desiccation or surface another view alone)
 // (--skull-detail coarse for a quicker template).
 //
 //   node tests/web/browser_test.mjs --forensim build/release/bin/forensim --web web [--shots DIR]
-//        [--goldens tests/golden/web] [--fps-resolution 2048] [--only skull] [--skull-detail full|coarse]
+//        [--goldens tests/golden/web] [--fps-resolution 2048] [--only skull|wound|desiccation|surface] [--skull-detail full|coarse]
 // Exit codes: 0 pass, 1 fail, 77 skipped (no chromium or no playwright-core).
 
 import { spawn, spawnSync } from 'node:child_process';
@@ -44,7 +45,14 @@ const chromiumPath = args.chromium || '/usr/bin/chromium';
 const goldens = resolve(args.goldens || join(dirname(fileURLToPath(import.meta.url)), '../golden/web'));
 const updateGoldens = ['1', 'yes', 'true'].includes(process.env.FORENSIM_UPDATE_GOLDENS || '');
 const fpsResolution = Number(args['fps-resolution'] ?? 2048);
-const only = args.only || '';  // 'skull': the skull editor alone (quicker, for working on it)
+// --only wound|desiccation|surface|skull: that view alone (quicker, for working on it); the wound part includes
+// the frame rate of the large map set.
+const only = args.only || '';
+if (only && !['wound', 'desiccation', 'surface', 'skull'].includes(only)) {
+  console.log(`--only ${only}: expected wound, desiccation, surface or skull`);
+  process.exit(2);
+}
+const want = (part) => !only || only === part;
 const SKIP = 77;
 
 function skip(why) {
@@ -173,7 +181,8 @@ async function skullEditor({ page, base, open, golden, shot, canvasColour, dista
   console.log(`measured: drag release to updated face drawn: median ${med(total).toFixed(0)} ms over ${total.length} drags ` +
               `(${Math.min(...total).toFixed(0)} to ${Math.max(...total).toFixed(0)} ms; medians: waiting for the live ` +
               `request ${part('wait_ms')} ms, final request ${part('request_ms')} ms, applying ${part('apply_ms')} ms, ` +
-              `next frame ${part('frame_ms')} ms; server update ${med(server).toFixed(0)} ms; ` +
+              `next frame ${part('frame_ms')} ms; server update ${med(server).toFixed(0)} ms; shown on screen (the ` +
+              `following frame began) after ${part('shown_ms')} ms; ` +
               `${fps.toFixed(1)} frames/s; goal under 200 ms)`);
   await shot('skull_editor_dragged.png');
 
@@ -216,15 +225,17 @@ const served = mkdtempSync(join(tmpdir(), 'forensim-web-'));
 let server, browser;
 try {
   const t0 = Date.now();
-  if (!only) {
-  run(['wound', '--builtin', 'cylinder', '--resolution', '256', '--times', '36h', '--picture-size', '0',
-       '-o', join(served, 'wound-run')]);
-  run(['mummify', '--phantom', 'arm', '--size', 'small', '--days', '2', '--frames', '2', '--no-pictures',
-       '-o', join(served, 'dry-run')]);
-  writeSurfaceRun(join(served, 'surface-run'));
-  console.log(`runs made in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  if (want('wound')) {
+    run(['wound', '--builtin', 'cylinder', '--resolution', '256', '--times', '36h', '--picture-size', '0',
+         '-o', join(served, 'wound-run')]);
   }
-  const bigRun = fpsResolution > 0 && !only
+  if (want('desiccation')) {
+    run(['mummify', '--phantom', 'arm', '--size', 'small', '--days', '2', '--frames', '2', '--no-pictures',
+         '-o', join(served, 'dry-run')]);
+  }
+  if (want('surface')) writeSurfaceRun(join(served, 'surface-run'));
+  console.log(`runs made in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  const bigRun = fpsResolution > 0 && want('wound')
     ? runLater(['wound', '--builtin', 'forearm-uv', '--resolution', String(fpsResolution), '--times', '36h',
                 '--picture-size', '0', '-o', join(served, 'wound-big')]).then(() => Date.now() - t0)
     : null;
@@ -281,6 +292,7 @@ try {
   }, [fx, fy, half]);
   const distance = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
   const settle = () => page.waitForTimeout(400);
+  const legendTitle = () => page.textContent('#legend-title');
 
   // The 3D canvas halved (a PNG data URL), compared with the golden of that name within the tolerance above.
   const golden = async (name) => {
@@ -356,6 +368,8 @@ try {
   check(['wound-run', 'dry-run', 'surface-run'].every((r) => runs.includes(r)), `runs listed: ${runs.join(', ')}`);
   await shot('runs.png');
 
+  }
+  if (want('wound')) {
   // 2. A wound run: its timeline scrubbed in the shader. The wound is the middle of the cylinder's UV square,
   // seen from the front preset; fresh (0 s) and scab (36 h) colours differ.
   await open('#/run?path=wound-run');
@@ -405,6 +419,8 @@ try {
   await shot('wound_editor.png');
   await golden('wound_editor.png');
 
+  }
+  if (want('desiccation')) {
   // 4. Desiccation: step the run's frames; the surface colour (water) changes.
   await open('#/desiccation?path=dry-run');
   check(await page.evaluate(() => document.body.dataset.frame) === '0', 'frame 0 shown');
@@ -420,7 +436,6 @@ try {
   check(/day 2/.test(frameLabel), `frame time in days: "${frameLabel}"`);
   await shot('desiccation.png');
   await golden('desiccation_moisture.png');
-  const legendTitle = () => page.textContent('#legend-title');
   check(/moisture.*%/.test(await legendTitle()), `moisture legend with its unit: "${await legendTitle()}"`);
   // Shrinkage: the local area lost against the rest shape, 0 at frame 0 and growing as the arm dries.
   const colourBy = async (mode) => {
@@ -460,6 +475,8 @@ try {
   const cutOpen = await canvasColour(0.5, 0.5, 20);
   check(distance(cutOpen, dry) > 0.005, `the cutting plane changes the view (${distance(cutOpen, dry).toFixed(3)})`);
 
+  }
+  if (want('surface')) {
   // 5. A surface run with an uncertainty field: coloured by it, with the unit in the legend.
   await open('#/run?path=surface-run');
   check(await page.evaluate(() => document.body.dataset.colour) === 'uncertainty', 'uncertainty shown first');
@@ -492,13 +509,15 @@ try {
   const background = await canvasColour(0.02, 0.02, 3), glbCentre = await canvasColour();
   check(distance(background, glbCentre) > 0.1, `a GLB-only run shows its mesh (${distance(background, glbCentre).toFixed(3)})`);
 
+  }
+  if (!only) {
   // 6. The desiccation start form and the editor's default mesh load without errors.
   await open('#/desiccation');
   await open('#/wound', 180000);
   }
 
   // 7. The skull editor on the built-in skull with detected landmarks and the full template.
-  await skullEditor({ page, base, open, golden, shot, canvasColour, distance, settle });
+  if (want('skull')) await skullEditor({ page, base, open, golden, shot, canvasColour, distance, settle });
 
   // 8. Measured, not asserted: the frame rate while the time slider of a large map set moves every frame.
   if (bigRun) {

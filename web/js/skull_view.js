@@ -264,9 +264,13 @@ export async function showSkullEditor(ctx, params) {
       newFace(answer);
       const applied = performance.now();
       const drawn = await nextFrame();
+      // The frame after the one that drew the face starts once that one was shown (the compositor waits for
+      // the renderer), so it tells when the new face was on screen.
+      const shown = await nextFrame();
       const latency = {
         total_ms: drawn - released, wait_ms: waited - released, request_ms: received - waited,
-        apply_ms: applied - received, frame_ms: drawn - applied, server_ms: answer.update_ms, reused: same,
+        apply_ms: applied - received, frame_ms: drawn - applied, shown_ms: shown - released,
+        server_ms: answer.update_ms, reused: same,
       };
       state.latencies.push(latency);
       $('skull-timing').textContent = `face updated ${latency.total_ms.toFixed(0)} ms after release (server ` +
