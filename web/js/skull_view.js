@@ -137,10 +137,11 @@ export async function showSkullEditor(ctx, params) {
     skinMaterial.opacity = $('transparent').checked ? 0.4 : 1;
     skinMaterial.depthWrite = !$('transparent').checked;
     skinMaterial.needsUpdate = true;
+    ctx.stage.requestRender();
   };
   $('transparent').onchange = setTransparent;
-  $('show-vectors').onchange = () => { vectors.visible = $('show-vectors').checked; };
-  $('show-face').onchange = () => { face.visible = $('show-face').checked; };
+  $('show-vectors').onchange = () => { vectors.visible = $('show-vectors').checked; ctx.stage.requestRender(); };
+  $('show-face').onchange = () => { face.visible = $('show-face').checked; ctx.stage.requestRender(); };
   setTransparent();
 
   const drawLandmarks = () => {
@@ -169,6 +170,7 @@ export async function showSkullEditor(ctx, params) {
     if (drag) drag.marker = markers.children.find((m) => m.userData.name === drag.name);
     $('landmark-info').textContent = info ? `${info.name} (${info.full_name || ''}): ${info.source}, confidence ` +
       `${info.confidence.toFixed(2)}${info.depth_mm ? `, depth ${info.depth_mm.toFixed(1)} mm` : ''}` : '';
+    ctx.stage.requestRender();
   };
 
   const setFace = (positions) => {
@@ -178,6 +180,7 @@ export async function showSkullEditor(ctx, params) {
     face.geometry.computeVertexNormals();
     face.geometry.computeBoundingSphere();
     document.body.dataset.faceVersion = String(++faceVersion);
+    ctx.stage.requestRender();
   };
   const newFace = (answer) => {
     const positions = float32Array(answer.face.positions_f32);
@@ -231,6 +234,7 @@ export async function showSkullEditor(ctx, params) {
     const hit = cast(event, markers.children);
     if (!hit) return;
     ctx.stage.controls.enabled = false;
+    ctx.stage.beginInteraction();
     selected = hit.object.userData.name;
     drag = { name: selected, marker: hit.object, position: null };
     drawLandmarks();
@@ -241,6 +245,7 @@ export async function showSkullEditor(ctx, params) {
     if (!hit) return;
     drag.position = hit.point.toArray();
     drag.marker.position.copy(hit.point);
+    ctx.stage.requestRender();
     sendLive(drag.name, drag.position);
   });
   const release = async () => {
@@ -249,7 +254,10 @@ export async function showSkullEditor(ctx, params) {
     drag = null;
     pending = null;
     ctx.stage.controls.enabled = true;
-    if (!position) return;
+    if (!position) {
+      ctx.stage.endInteraction();
+      return;
+    }
     const released = performance.now();
     try {
       // The answer for the final position: the live request's when it went from there, else a new one, sent
@@ -264,6 +272,7 @@ export async function showSkullEditor(ctx, params) {
       newFace(answer);
       const applied = performance.now();
       const drawn = await nextFrame();
+      ctx.stage.endInteraction();  // drawn at the drag's pixel ratio first, then at the full one
       // The frame after the one that drew the face starts once that one was shown (the compositor waits for
       // the renderer), so it tells when the new face was on screen.
       const shown = await nextFrame();
@@ -277,6 +286,7 @@ export async function showSkullEditor(ctx, params) {
         `${answer.update_ms.toFixed(0)} ms; median of ${state.latencies.length}: ` +
         `${median(state.latencies.map((l) => l.total_ms)).toFixed(0)} ms)`;
     } catch (e) {
+      ctx.stage.endInteraction();
       fail(e);
       drawLandmarks();
     }
@@ -365,6 +375,7 @@ export async function showSkullEditor(ctx, params) {
           poses.set(name, float32Array(a.positions_f32));
         }
         playing = { pose: poses.get(name), start: performance.now(), name };
+        ctx.stage.requestRender();
       } catch (e) { fail(e); }
     };
     $('expressions').appendChild(b);
@@ -373,6 +384,7 @@ export async function showSkullEditor(ctx, params) {
   const PLAY_S = 2.0;
   ctx.stage.onFrame = (now) => {
     if (!playing) return;
+    ctx.stage.requestRender();  // the next pose, and the neutral face once played
     const t = (now - playing.start) / 1000;
     const attribute = face.geometry.attributes.position;
     attribute.array.set(blendPositions(work, neutral, playing.pose, playWeight(t, PLAY_S)));
