@@ -288,6 +288,43 @@ nlohmann::json SkullSession::move_landmark(const LandmarkEdit& edit) {
   return j;
 }
 
+nlohmann::json SkullSession::remove_landmark(const std::string& name) {
+  std::lock_guard lock(m_mutex);
+  touch();
+  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
+  const auto ref = vocabulary.find(name);
+  const std::string canonical = ref ? vocabulary.name(*ref) : name;
+  if (!ref || !m_reconstruction->result().skull_landmarks.contains(canonical)) {
+    throw ApiError(404, "the session has no landmark '" + name + "'", "name");
+  }
+  Stopwatch watch;
+  const std::size_t pairs = as_bad_request("name", [&] { return m_reconstruction->remove_landmark(canonical); });
+  const double update_s = watch.lap();
+  changed();
+  nlohmann::json j = {{"removed", canonical}, {"warp_pairs", pairs}, {"update_ms", ms(update_s)}};
+  j["landmarks"] = landmarks_json();
+  j["addable"] = addable_json();
+  j["face"] = face_positions_json();
+  j["encode_ms"] = ms(watch.lap());
+  return j;
+}
+
+nlohmann::json SkullSession::violations() {
+  std::lock_guard lock(m_mutex);
+  touch();
+  Stopwatch watch;
+  const bool recount = !m_reconstruction->result().violations_current;
+  if (recount) m_reconstruction->recount_violations();
+  const SkullSkinViolations& v = m_reconstruction->result().violations_final;
+  return {{"skull_through_skin", v.skull_outside_skin},
+          {"skin_inside_skull", v.skin_inside_skull},
+          {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
+          {"max_skin_intrusion_mm", v.max_skin_intrusion_mm},
+          {"counts", m_reconstruction->violations_json()},
+          {"recounted", recount},
+          {"count_ms", ms(watch.seconds())}};
+}
+
 nlohmann::json SkullSession::set_depths(const SkullDepthChoice& choice) {
   std::lock_guard lock(m_mutex);
   touch();

@@ -51,6 +51,18 @@ class SkullSession {
   /// Throws ApiError 400 with field "/name" for a name that is not a bone landmark of the vocabulary and
   /// "/position" for a position too far from the skull; the session is then unchanged.
   nlohmann::json move_landmark(const LandmarkEdit& edit);
+  /// Removes landmark `name` (any vocabulary spelling) with its depth vector and warp pair
+  /// (Reconstruction::remove_landmark): {"removed", "warp_pairs", "landmarks", "addable", "face":
+  /// {"positions_f32"}, "update_ms", "encode_ms"}. Throws ApiError 404 (field "name") when the set has no such
+  /// landmark and 400 (field "name") when removing it would leave fewer than 4 given warp pairs or a degenerate
+  /// set; the session is then unchanged.
+  nlohmann::json remove_landmark(const std::string& name);
+  /// The skull/skin violations of the current face (Reconstruction::recount_violations, counted when an
+  /// update made them stale; a count takes a while, so the editor asks after a drag ends, not during it):
+  /// {"skull_through_skin" (skull vertices outside the skin), "skin_inside_skull" (skin vertices inside the
+  /// skull), "max_skull_protrusion_mm", "max_skin_intrusion_mm" (all of the final face, after the guides),
+  /// "counts": Reconstruction::violations_json(), "recounted", "count_ms"}.
+  nlohmann::json violations();
   /// Replaces the tissue depths (table, sex, build): {"depths", "landmarks", "face", "update_ms", ...}.
   nlohmann::json set_depths(const SkullDepthChoice& choice);
   /// Replaces the guides (nullopt: none): {"guides", "guide_values", "guides_adjusted", "face", "update_ms"}.
