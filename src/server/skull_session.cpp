@@ -12,6 +12,7 @@
 #include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/skull_skin_violations.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "mesh_io/gltf_writer.hpp"
@@ -215,6 +216,7 @@ nlohmann::json SkullSession::face_positions_json() const {
 void SkullSession::changed() {
   m_expressions.reset();
   m_poses.clear();
+  ++m_face_version;
 }
 
 nlohmann::json SkullSession::record() const {
@@ -309,20 +311,54 @@ nlohmann::json SkullSession::remove_landmark(const std::string& name) {
   return j;
 }
 
-nlohmann::json SkullSession::violations() {
-  std::lock_guard lock(m_mutex);
-  touch();
-  Stopwatch watch;
-  const bool recount = !m_reconstruction->result().violations_current;
-  if (recount) m_reconstruction->recount_violations();
-  const SkullSkinViolations& v = m_reconstruction->result().violations_final;
+namespace {
+
+nlohmann::json violations_answer(const SkullSkinViolations& v, std::uint64_t version, bool recounted, double seconds) {
   return {{"skull_through_skin", v.skull_outside_skin},
           {"skin_inside_skull", v.skin_inside_skull},
           {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
           {"max_skin_intrusion_mm", v.max_skin_intrusion_mm},
-          {"counts", m_reconstruction->violations_json()},
-          {"recounted", recount},
-          {"count_ms", ms(watch.seconds())}};
+          {"face_version", version},
+          {"recounted", recounted},
+          {"count_ms", ms(seconds)}};
+}
+
+}  // namespace
+
+nlohmann::json SkullSession::violations(bool all) {
+  Stopwatch watch;
+  if (all) {
+    std::lock_guard lock(m_mutex);
+    touch();
+    const bool recount = !m_reconstruction->result().violations_current;
+    if (recount) m_reconstruction->recount_violations();
+    m_violations = m_reconstruction->result().violations_final;
+    m_violations_version = m_face_version;
+    nlohmann::json j = violations_answer(*m_violations, m_face_version, recount, watch.seconds());
+    j["counts"] = m_reconstruction->violations_json();
+    return j;
+  }
+  TriMesh skin;
+  std::uint64_t version = 0;
+  {
+    std::lock_guard lock(m_mutex);
+    touch();
+    if (m_violations && m_violations_version == m_face_version) {
+      return violations_answer(*m_violations, m_face_version, false, watch.seconds());
+    }
+    skin = m_reconstruction->result().skin;
+    version = m_face_version;
+  }
+  // The skull mesh does not change after the session's construction.
+  const SkullSkinViolations v = count_skull_skin_violations(m_skull.mesh, skin);
+  {
+    std::lock_guard lock(m_mutex);
+    if (version == m_face_version) {
+      m_violations = v;
+      m_violations_version = version;
+    }
+  }
+  return violations_answer(v, version, true, watch.seconds());
 }
 
 nlohmann::json SkullSession::set_depths(const SkullDepthChoice& choice) {

@@ -11,7 +11,8 @@
 ///   DELETE /api/skull/sessions/ID              {"deleted": ID}
 ///   POST   /api/skull/sessions/ID/landmarks    {"name", "position"}: move or add one landmark
 ///   DELETE /api/skull/sessions/ID/landmarks/NAME  remove one landmark (404 when the set has none)
-///   GET    /api/skull/sessions/ID/violations   skull/skin violation counts of the current face
+///   GET    /api/skull/sessions/ID/violations   skull/skin violation counts of the current face (?all=1: also
+///                                               before the interpolated pairs and the guides)
 ///   POST   /api/skull/sessions/ID/depths       {"table", "sex", "build"}
 ///   POST   /api/skull/sessions/ID/guides       {"guides": {...} | null}
 ///   POST   /api/skull/sessions/ID/expressions  {"name": preset}

@@ -423,23 +423,25 @@ TEST_F(SkullApi, SessionLimitAndIdleExpiry) {
 namespace {
 
 // The violation counts of a reconstruction made directly (not through a session) from the template's own
-// landmarks (without `removed`), on the built-in skull, with the session's default depths.
-SkullSkinViolations direct_violations(const std::string& removed = "") {
+// landmarks (without `removed`), on the built-in skull, with the session's default depths: its
+// violations_json(), counted.
+nlohmann::json direct_violations(const std::string& removed = "") {
   const auto head = test::shared_skull_templates()->get("coarse");
   LandmarkSet landmarks = template_skull_landmarks(*head);
   if (!removed.empty()) landmarks.remove(removed);
   ReconstructionOptions options;
   options.fit.count_violations = true;
   const Reconstruction r(*head, head->skull, landmarks, select_session_depths(SkullDepthChoice{}), options);
-  return r.result().violations_final;
+  return r.violations_json();
 }
 
-void expect_counts(const nlohmann::json& j, const SkullSkinViolations& want) {
+// The session's answer against the direct reconstruction's final face (no guides: with the interpolated pairs).
+void expect_counts(const nlohmann::json& j, const nlohmann::json& want) {
   ASSERT_TRUE(j.is_object());
-  EXPECT_EQ(j["skull_through_skin"].get<std::size_t>(), want.skull_outside_skin);
-  EXPECT_EQ(j["skin_inside_skull"].get<std::size_t>(), want.skin_inside_skull);
-  EXPECT_NEAR(j["max_skull_protrusion_mm"].get<double>(), want.max_skull_protrusion_mm, 1e-9);
-  EXPECT_TRUE(j["counts"]["current"].get<bool>());
+  const nlohmann::json& final_face = want["with_interpolated_landmarks"];
+  EXPECT_EQ(j["skull_through_skin"], final_face["skull_outside_skin"]);
+  EXPECT_EQ(j["skin_inside_skull"], final_face["skin_inside_skull"]);
+  EXPECT_NEAR(j["max_skull_protrusion_mm"].get<double>(), final_face["max_skull_protrusion_mm"].get<double>(), 1e-9);
 }
 
 }  // namespace
@@ -450,10 +452,20 @@ TEST_F(SkullApi, RemovedLandmarkChangesTheFaceAndViolationsMatchADirectReconstru
   const auto a = ok(post(c, "/api/skull/sessions", quick_session()), 201);
   ASSERT_TRUE(a.is_object());
   const std::vector<float> before = floats(a["face"]["positions_f32"]);
+  const nlohmann::json direct = direct_violations();
   const auto counted = ok(c.Get(session_path(a, "/violations").c_str()));
-  expect_counts(counted, direct_violations());
+  expect_counts(counted, direct);
   EXPECT_TRUE(counted["recounted"].get<bool>());
-  EXPECT_FALSE(ok(c.Get(session_path(a, "/violations").c_str()))["recounted"].get<bool>());  // still current
+  EXPECT_FALSE(ok(c.Get(session_path(a, "/violations").c_str()))["recounted"].get<bool>());  // kept
+  // All counts, as the direct reconstruction's.
+  const auto all = ok(c.Get(session_path(a, "/violations?all=1").c_str()));
+  expect_counts(all, direct);
+  ASSERT_TRUE(all.contains("counts"));
+  EXPECT_TRUE(all["counts"]["current"].get<bool>());
+  for (const char* key : {"given_pairs_only", "with_interpolated_landmarks"}) {
+    EXPECT_EQ(all["counts"][key]["skull_outside_skin"], direct[key]["skull_outside_skin"]) << key;
+    EXPECT_EQ(all["counts"][key]["skin_inside_skull"], direct[key]["skin_inside_skull"]) << key;
+  }
 
   const auto removed = ok(c.Delete(session_path(a, "/landmarks/pg").c_str()));
   ASSERT_TRUE(removed.is_object());

@@ -127,9 +127,10 @@ function writeSurfaceRun(folder) {
 
 // The skull editor: loads the built-in skull (landmarks detected, with confidences), compares the view with
 // its golden, drags landmark g (glabella) up and down over the skull with the mouse several times and checks
-// that the face's vertices moved; then skin transparency, a build change, an expression played, the guides and
-// the exports. Measured and printed, not asserted: the median time from a drag's release to the updated face
-// drawn (goal: under 200 ms), and the server's share of it.
+// that the face's vertices moved; then skin transparency, a build change, an expression played, the guides,
+// the exports, the violation counts and a landmark (pogonion) removed with the Delete key. Measured and
+// printed, not asserted: the median time from a drag's release to the updated face drawn (goal: under
+// 200 ms), and the server's share of it.
 async function skullEditor({ page, base, open, golden, shot, canvasColour, distance, settle }) {
   const t0 = Date.now();
   await open(`#/skull?skull=builtin&landmarks=auto&detail=${args['skull-detail'] || 'full'}`, 600000);
@@ -220,6 +221,32 @@ async function skullEditor({ page, base, open, golden, shot, canvasColour, dista
         `landmarks export as .mrk.json (${points.length} points, g ${gPoint ? gPoint.description : 'missing'})`);
   const glb = Buffer.from(await (await fetch(`${base}api/skull/sessions/${id}/head.glb?expressions=smile`)).arrayBuffer());
   check(glb.subarray(0, 4).toString() === 'glTF', `the head exports as GLB (${(glb.length / 1024).toFixed(0)} KiB)`);
+
+  // The violation counts, asked for after the changes settled.
+  const violationsShown = () => page.waitForFunction(() => /skull through skin: \d+ vertices/.test(
+    document.getElementById('violations').textContent), null, { timeout: 120000 });
+  await violationsShown();
+  check(true, `violations shown: "${await page.textContent('#violations')}"`);
+  // Removing a landmark: click pogonion's marker to select it, press Delete; the chin loses its pair.
+  const beforeRemoval = await facePositions();
+  const removalVersion = await page.evaluate(() => window.forensim.skull.faceVersion());
+  const asked = await page.evaluate(() => Number(document.body.dataset.violations || 0));
+  const pg = await page.evaluate(() => window.forensim.skull.screenPosition('pg'));
+  await page.mouse.move(pg.x, pg.y);
+  await page.mouse.down();
+  await page.mouse.up();
+  check(await page.isEnabled('#remove'), 'a clicked landmark is selected for removal');
+  await page.keyboard.press('Delete');
+  await page.waitForFunction((v) => window.forensim.skull.faceVersion() > v, removalVersion);
+  const afterRemoval = await facePositions();
+  let removalMoved = 0;
+  for (let i = 0; i < afterRemoval.length; ++i) removalMoved = Math.max(removalMoved, Math.abs(afterRemoval[i] - beforeRemoval[i]));
+  const left = await page.evaluate(() => window.forensim.skull.markers.children.map((m) => m.userData.name));
+  check(left.length === info.markers - 1 && !left.includes('pg') && removalMoved > 0.05,
+        `removing pg changes the face (${removalMoved.toFixed(2)} mm; ${left.length} landmarks left)`);
+  await page.waitForFunction((n) => Number(document.body.dataset.violations || 0) > n &&
+    /skull through skin: \d+/.test(document.getElementById('violations').textContent), asked, { timeout: 120000 });
+  console.log(`measured: after removing pg, ${await page.textContent('#violations')}`);
 }
 
 const started = Date.now();
