@@ -247,6 +247,47 @@ nlohmann::json Reconstruction::violations_json() const {
   return out;
 }
 
+std::size_t Reconstruction::remove_landmark(const std::string& name) {
+  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
+  const std::string canonical = vocabulary.canonical_name(name, "removed landmark", name);
+  require_input(m_result.skull_landmarks.contains(canonical), "removed landmark", canonical,
+                "is not one of the skull landmarks");
+  // The new state is built aside and taken over only once the new fit succeeded.
+  LandmarkSet landmarks = m_result.skull_landmarks;
+  landmarks.remove(canonical);
+  DepthVectors vectors = depth_vectors(m_surface, landmarks, m_depths, m_options.depth);
+  std::vector<bool> used;
+  std::vector<std::string> not_on_template;
+  const LandmarkDepths given = fit_input(m_head, vectors, used, not_on_template);
+  const std::vector<std::string>& before = m_fit->result().pair_names;
+  const std::size_t before_given = m_fit->result().given_pair_count;
+  bool same_pairs = given.names.size() == before_given;
+  for (std::size_t i = 0; same_pairs && i < given.names.size(); ++i) {
+    const int j = find_template_landmark(m_head, given.names[i]);
+    same_pairs = j >= 0 && m_head.landmarks[static_cast<std::size_t>(j)].skin_name == before[i];
+  }
+  std::unique_ptr<TemplateFit> fit;
+  if (!same_pairs) {
+    require_input(given.names.size() >= 4, "removed landmark", canonical,
+                  "would leave " + std::to_string(given.names.size()) +
+                      " landmark pairs for the warp; it needs at least 4 (eq. 1)");
+    FitTemplateOptions fit_options = m_options.fit;
+    fit_options.count_violations = false;
+    fit = std::make_unique<TemplateFit>(m_head, m_surface.mesh(), given, fit_options);  // throws when degenerate
+  }
+  m_result.skull_landmarks = std::move(landmarks);
+  m_result.depth_vectors = std::move(vectors);
+  m_result.used_in_warp = std::move(used);
+  m_result.not_on_template = std::move(not_on_template);
+  if (fit) {
+    m_fit = std::move(fit);
+    apply_guides();
+  } else {
+    assemble();  // the warp is unchanged; the skin landmarks follow the depth vectors
+  }
+  return m_fit->result().targets.size();
+}
+
 ReconstructionResult reconstruct_face(const TemplateHead& head, const TriMesh& skull,
                                       const LandmarkSet& skull_landmarks, const TissueDepths& depths,
                                       const ReconstructionOptions& options) {

@@ -86,6 +86,15 @@ class Reconstruction {
   /// options.depth.max_surface_offset_mm from the skull. Returns the number of warp targets that changed.
   std::size_t move_landmark(const std::string& name, const Vec3& position_mm);
 
+  /// Removes skull landmark `name` (any spelling) from the set, with its depth vector and warp pair: a new
+  /// landmark set, so the warp is factored anew (the template fit of eq. 1 with the remaining given pairs and
+  /// the interpolated ones they generate) and the guides re-applied; the same head as a fresh reconstruction
+  /// without it. A landmark outside the warp (no skin pair on the template, no depth) leaves the head as it
+  /// is. Violations are left stale (call recount_violations()). Throws InputError, leaving the reconstruction
+  /// unchanged, when the set has no such landmark, or when removing it would leave fewer than 4 given warp
+  /// pairs or a degenerate set (all in one plane). Returns the number of warp pairs after the removal.
+  std::size_t remove_landmark(const std::string& name);
+
   /// Replaces the tissue depths (e.g. a build variant or a sample of sample_tissue_depths) and re-targets the
   /// warp with the same factorisation: the depth vectors keep their directions and take the new lengths.
   /// Throws InputError when a landmark of the warp has no depth in `depths`. Returns the number of warp targets

@@ -192,6 +192,13 @@ void ApiServer::Impl::skull_routes(const Get& get, const Post& post, const Delet
     doc.check_all_used();
     send_mesh_json(res, 200, session->move_landmark(edit));
   });
+  del(one + "/landmarks/([^/]+)", [this](const Req& req, Res& res) {
+    send_mesh_json(res, 200, skull_sessions->find(req.matches[1])->remove_landmark(req.matches[2]));
+  });
+  get(one + "/violations", [this](const Req& req, Res& res) {
+    const bool all = req.has_param("all") && req.get_param_value("all") == "1";
+    send_mesh_json(res, 200, skull_sessions->find(req.matches[1])->violations(all));
+  });
   post(one + "/depths", [this](const Req& req, Res& res) {
     auto session = skull_sessions->find(req.matches[1]);
     JobDocument doc = parse_request(req.body, "tissue depths");

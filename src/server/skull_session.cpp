@@ -12,6 +12,7 @@
 #include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/skull_skin_violations.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "mesh_io/gltf_writer.hpp"
@@ -215,6 +216,7 @@ nlohmann::json SkullSession::face_positions_json() const {
 void SkullSession::changed() {
   m_expressions.reset();
   m_poses.clear();
+  ++m_face_version;
 }
 
 nlohmann::json SkullSession::record() const {
@@ -286,6 +288,77 @@ nlohmann::json SkullSession::move_landmark(const LandmarkEdit& edit) {
   j["face"] = face_positions_json();
   j["encode_ms"] = ms(watch.lap());
   return j;
+}
+
+nlohmann::json SkullSession::remove_landmark(const std::string& name) {
+  std::lock_guard lock(m_mutex);
+  touch();
+  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
+  const auto ref = vocabulary.find(name);
+  const std::string canonical = ref ? vocabulary.name(*ref) : name;
+  if (!ref || !m_reconstruction->result().skull_landmarks.contains(canonical)) {
+    throw ApiError(404, "the session has no landmark '" + name + "'", "name");
+  }
+  Stopwatch watch;
+  const std::size_t pairs = as_bad_request("name", [&] { return m_reconstruction->remove_landmark(canonical); });
+  const double update_s = watch.lap();
+  changed();
+  nlohmann::json j = {{"removed", canonical}, {"warp_pairs", pairs}, {"update_ms", ms(update_s)}};
+  j["landmarks"] = landmarks_json();
+  j["addable"] = addable_json();
+  j["face"] = face_positions_json();
+  j["encode_ms"] = ms(watch.lap());
+  return j;
+}
+
+namespace {
+
+nlohmann::json violations_answer(const SkullSkinViolations& v, std::uint64_t version, bool recounted, double seconds) {
+  return {{"skull_through_skin", v.skull_outside_skin},
+          {"skin_inside_skull", v.skin_inside_skull},
+          {"max_skull_protrusion_mm", v.max_skull_protrusion_mm},
+          {"max_skin_intrusion_mm", v.max_skin_intrusion_mm},
+          {"face_version", version},
+          {"recounted", recounted},
+          {"count_ms", ms(seconds)}};
+}
+
+}  // namespace
+
+nlohmann::json SkullSession::violations(bool all) {
+  Stopwatch watch;
+  if (all) {
+    std::lock_guard lock(m_mutex);
+    touch();
+    const bool recount = !m_reconstruction->result().violations_current;
+    if (recount) m_reconstruction->recount_violations();
+    m_violations = m_reconstruction->result().violations_final;
+    m_violations_version = m_face_version;
+    nlohmann::json j = violations_answer(*m_violations, m_face_version, recount, watch.seconds());
+    j["counts"] = m_reconstruction->violations_json();
+    return j;
+  }
+  TriMesh skin;
+  std::uint64_t version = 0;
+  {
+    std::lock_guard lock(m_mutex);
+    touch();
+    if (m_violations && m_violations_version == m_face_version) {
+      return violations_answer(*m_violations, m_face_version, false, watch.seconds());
+    }
+    skin = m_reconstruction->result().skin;
+    version = m_face_version;
+  }
+  // The skull mesh does not change after the session's construction.
+  const SkullSkinViolations v = count_skull_skin_violations(m_skull.mesh, skin);
+  {
+    std::lock_guard lock(m_mutex);
+    if (version == m_face_version) {
+      m_violations = v;
+      m_violations_version = version;
+    }
+  }
+  return violations_answer(v, version, true, watch.seconds());
 }
 
 nlohmann::json SkullSession::set_depths(const SkullDepthChoice& choice) {

@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -51,6 +52,21 @@ class SkullSession {
   /// Throws ApiError 400 with field "/name" for a name that is not a bone landmark of the vocabulary and
   /// "/position" for a position too far from the skull; the session is then unchanged.
   nlohmann::json move_landmark(const LandmarkEdit& edit);
+  /// Removes landmark `name` (any vocabulary spelling) with its depth vector and warp pair
+  /// (Reconstruction::remove_landmark): {"removed", "warp_pairs", "landmarks", "addable", "face":
+  /// {"positions_f32"}, "update_ms", "encode_ms"}. Throws ApiError 404 (field "name") when the set has no such
+  /// landmark and 400 (field "name") when removing it would leave fewer than 4 given warp pairs or a degenerate
+  /// set; the session is then unchanged.
+  nlohmann::json remove_landmark(const std::string& name);
+  /// The skull/skin violations of the current face (count_skull_skin_violations of the final skin, after the
+  /// guides; kept until the face changes): {"skull_through_skin" (skull vertices outside the skin),
+  /// "skin_inside_skull" (skin vertices inside the skull), "max_skull_protrusion_mm", "max_skin_intrusion_mm",
+  /// "face_version", "recounted", "count_ms"}. A count takes longer than an update (seconds on the full
+  /// template), so it runs on a copy of the face without holding the session: edits meanwhile are served at
+  /// once, and a count that an edit overtook is answered for the face it counted (face_version) but not kept.
+  /// With `all`, Reconstruction::recount_violations (the warp with the given pairs only, with the interpolated
+  /// pairs, after the guides) holding the session, and "counts": Reconstruction::violations_json().
+  nlohmann::json violations(bool all);
   /// Replaces the tissue depths (table, sex, build): {"depths", "landmarks", "face", "update_ms", ...}.
   nlohmann::json set_depths(const SkullDepthChoice& choice);
   /// Replaces the guides (nullopt: none): {"guides", "guide_values", "guides_adjusted", "face", "update_ms"}.
@@ -94,6 +110,9 @@ class SkullSession {
   std::unique_ptr<Reconstruction> m_reconstruction;
   std::unique_ptr<FaceExpressions> m_expressions;    ///< of the current face (built on first use)
   std::map<std::string, std::vector<Vec3>> m_poses;  ///< expressions of the current face
+  std::uint64_t m_face_version = 0;                  ///< counts the changes of the face
+  std::optional<SkullSkinViolations> m_violations;   ///< of the face at m_violations_version
+  std::uint64_t m_violations_version = 0;
   nlohmann::json m_timings_ms = nlohmann::json::object();
   std::atomic<std::int64_t> m_last_used_ns{0};
   mutable std::mutex m_mutex;

@@ -10,6 +10,9 @@
 ///   GET    /api/skull/sessions/ID              the description (?geometry=0 leaves out the meshes' triangles)
 ///   DELETE /api/skull/sessions/ID              {"deleted": ID}
 ///   POST   /api/skull/sessions/ID/landmarks    {"name", "position"}: move or add one landmark
+///   DELETE /api/skull/sessions/ID/landmarks/NAME  remove one landmark (404 when the set has none)
+///   GET    /api/skull/sessions/ID/violations   skull/skin violation counts of the current face (?all=1: also
+///                                               before the interpolated pairs and the guides)
 ///   POST   /api/skull/sessions/ID/depths       {"table", "sex", "build"}
 ///   POST   /api/skull/sessions/ID/guides       {"guides": {...} | null}
 ///   POST   /api/skull/sessions/ID/expressions  {"name": preset}

@@ -161,3 +161,46 @@ TEST(Reconstruction, RejectsBadLandmarks) {
   EXPECT_THROW(r.move_landmark("pg", Vec3(0, -1e4, 0)), InputError);  // far from the skull
   EXPECT_THROW(r.move_landmark("pg", Vec3(0, NAN, 0)), InputError);
 }
+
+TEST(Reconstruction, RemovingALandmarkThenAddingItBackGivesTheSameFace) {
+  const TemplateHead& head = coarse_template_head();
+  const LandmarkSet landmarks = template_skull_landmarks(head);
+  Reconstruction r(head, head.skull, landmarks, table_depths(), quick_options());
+  const ReconstructionResult first = r.result();
+  const std::size_t given = r.fit().given_pair_count;
+  r.remove_landmark("pogonion");  // any spelling
+  EXPECT_FALSE(r.result().skull_landmarks.contains("pg"));
+  EXPECT_EQ(r.fit().given_pair_count, given - 1);
+  for (const DepthVector& v : r.result().depth_vectors.vectors) EXPECT_NE(v.bone_landmark, "pg");
+  EXPECT_GT(max_distance(r.result().skin.positions, first.skin.positions), 0.1);  // the chin lost its pair
+  LandmarkSet without = landmarks;
+  without.remove("pg");
+  const Reconstruction fresh(head, head.skull, without, table_depths(), quick_options());
+  EXPECT_LT(max_distance(r.result().skin.positions, fresh.result().skin.positions), 1e-9 * head_mm);
+  // Added back where it was: the first face (the pair now comes last in the warp's order).
+  r.move_landmark("pg", landmarks.at("pg").position_mm);
+  EXPECT_EQ(r.fit().given_pair_count, given);
+  EXPECT_LT(max_distance(r.result().skin.positions, first.skin.positions), 1e-6);
+}
+
+TEST(Reconstruction, RemovingAnAbsentLandmarkOrTooManyThrowsAndChangesNothing) {
+  const TemplateHead& head = coarse_template_head();
+  const LandmarkSet all = template_skull_landmarks(head);
+  Reconstruction r(head, head.skull, all, table_depths(), quick_options());
+  EXPECT_THROW(r.remove_landmark("not a landmark"), InputError);
+  r.remove_landmark("g");
+  EXPECT_THROW(r.remove_landmark("g"), InputError);  // already removed
+  // Five landmarks around the head: one can go, the next would leave 3 pairs for eq. 1.
+  LandmarkSet five("five");
+  for (const std::string name : {"g", "pg", "zy_L", "zy_R", "v"}) five.add(all.at(name));
+  ReconstructionOptions plain = quick_options();
+  plain.fit.interpolated_landmarks = false;
+  Reconstruction small(head, head.skull, five, table_depths(), plain);
+  ASSERT_EQ(small.fit().given_pair_count, 5u);
+  EXPECT_EQ(small.remove_landmark("v"), 4u);
+  const std::vector<Vec3> skin = small.result().skin.positions;
+  EXPECT_THROW(small.remove_landmark("g"), InputError);
+  EXPECT_TRUE(small.result().skull_landmarks.contains("g"));
+  EXPECT_EQ(small.fit().given_pair_count, 4u);
+  EXPECT_EQ(max_distance(small.result().skin.positions, skin), 0.0);
+}

@@ -16,7 +16,11 @@
 
 #include "core/base64.hpp"
 #include "craniofacial/landmark_io.hpp"
+#include "craniofacial/reconstruction.hpp"
+#include "craniofacial/template_landmark_detection.hpp"
 #include "server/server_fixture.hpp"
+#include "server/skull_session.hpp"
+#include "server/skull_templates.hpp"
 #include "support/test_support.hpp"
 
 using namespace forensim;
@@ -414,4 +418,92 @@ TEST_F(SkullApi, SessionLimitAndIdleExpiry) {
   error_of(c.Get(session_path(a).c_str()), 404);
   EXPECT_TRUE(ok(c.Get("/api/skull/sessions"))["sessions"].empty());
   server.stop();
+}
+
+namespace {
+
+// The violation counts of a reconstruction made directly (not through a session) from the template's own
+// landmarks (without `removed`), on the built-in skull, with the session's default depths: its
+// violations_json(), counted.
+nlohmann::json direct_violations(const std::string& removed = "") {
+  const auto head = test::shared_skull_templates()->get("coarse");
+  LandmarkSet landmarks = template_skull_landmarks(*head);
+  if (!removed.empty()) landmarks.remove(removed);
+  ReconstructionOptions options;
+  options.fit.count_violations = true;
+  const Reconstruction r(*head, head->skull, landmarks, select_session_depths(SkullDepthChoice{}), options);
+  return r.violations_json();
+}
+
+// The session's answer against the direct reconstruction's final face (no guides: with the interpolated pairs).
+void expect_counts(const nlohmann::json& j, const nlohmann::json& want) {
+  ASSERT_TRUE(j.is_object());
+  const nlohmann::json& final_face = want["with_interpolated_landmarks"];
+  EXPECT_EQ(j["skull_through_skin"], final_face["skull_outside_skin"]);
+  EXPECT_EQ(j["skin_inside_skull"], final_face["skin_inside_skull"]);
+  EXPECT_NEAR(j["max_skull_protrusion_mm"].get<double>(), final_face["max_skull_protrusion_mm"].get<double>(), 1e-9);
+}
+
+}  // namespace
+
+TEST_F(SkullApi, RemovedLandmarkChangesTheFaceAndViolationsMatchADirectReconstruction) {
+  test::TestServer s(served);
+  auto c = s.client();
+  const auto a = ok(post(c, "/api/skull/sessions", quick_session()), 201);
+  ASSERT_TRUE(a.is_object());
+  const std::vector<float> before = floats(a["face"]["positions_f32"]);
+  const nlohmann::json direct = direct_violations();
+  const auto counted = ok(c.Get(session_path(a, "/violations").c_str()));
+  expect_counts(counted, direct);
+  EXPECT_TRUE(counted["recounted"].get<bool>());
+  EXPECT_FALSE(ok(c.Get(session_path(a, "/violations").c_str()))["recounted"].get<bool>());  // kept
+  // All counts, as the direct reconstruction's.
+  const auto all = ok(c.Get(session_path(a, "/violations?all=1").c_str()));
+  expect_counts(all, direct);
+  ASSERT_TRUE(all.contains("counts"));
+  EXPECT_TRUE(all["counts"]["current"].get<bool>());
+  for (const char* key : {"given_pairs_only", "with_interpolated_landmarks"}) {
+    EXPECT_EQ(all["counts"][key]["skull_outside_skin"], direct[key]["skull_outside_skin"]) << key;
+    EXPECT_EQ(all["counts"][key]["skin_inside_skull"], direct[key]["skin_inside_skull"]) << key;
+  }
+
+  const auto removed = ok(c.Delete(session_path(a, "/landmarks/pg").c_str()));
+  ASSERT_TRUE(removed.is_object());
+  EXPECT_EQ(removed["removed"], "pg");
+  EXPECT_EQ(removed["landmarks"].size(), a["landmarks"].size() - 1);
+  EXPECT_TRUE(landmark(removed["landmarks"], "pg").is_null());
+  EXPECT_TRUE(landmark(removed["addable"], "pg").is_object());
+  EXPECT_GT(largest_difference(before, floats(removed["face"]["positions_f32"])), 0.1);  // mm
+  const auto recounted = ok(c.Get(session_path(a, "/violations").c_str()));
+  EXPECT_TRUE(recounted["recounted"].get<bool>());
+  expect_counts(recounted, direct_violations("pg"));
+
+  // Gone already, never a landmark, or an unknown session: 404.
+  EXPECT_EQ(error_of(c.Delete(session_path(a, "/landmarks/pg").c_str()), 404)["field"], "name");
+  EXPECT_EQ(error_of(c.Delete(session_path(a, "/landmarks/nolandmark").c_str()), 404)["field"], "name");
+  error_of(c.Delete("/api/skull/sessions/nosuch/landmarks/g"), 404);
+  error_of(c.Get("/api/skull/sessions/nosuch/violations"), 404);
+}
+
+TEST_F(SkullApi, RemovalIsRefusedWhenTooFewWarpPairsWouldRemain) {
+  const auto head = test::shared_skull_templates()->get("coarse");
+  const LandmarkSet all = template_skull_landmarks(*head);
+  LandmarkSet five("five");
+  for (const std::string name : {"g", "pg", "zy_L", "zy_R", "v"}) five.add(all.at(name));
+  std::ofstream(served / "five.mrk.json") << markups_json_text(five);
+  test::TestServer s(served);
+  auto c = s.client();
+  const auto a = ok(post(c, "/api/skull/sessions", quick_session("five.mrk.json")), 201);
+  ASSERT_TRUE(a.is_object());
+  const auto four = ok(c.Delete(session_path(a, "/landmarks/v").c_str()));
+  ASSERT_TRUE(four.is_object());
+  EXPECT_EQ(four["landmarks"].size(), 4u);
+  const nlohmann::json e = error_of(c.Delete(session_path(a, "/landmarks/glabella").c_str()), 400);
+  ASSERT_TRUE(e.is_object());
+  EXPECT_EQ(e["field"], "name");
+  EXPECT_NE(e["message"].get<std::string>().find("at least 4"), std::string::npos) << e.dump();
+  // The refused removal left the session as it was.
+  const auto now = ok(c.Get(session_path(a, "?geometry=0").c_str()));
+  EXPECT_EQ(now["landmarks"].size(), 4u);
+  EXPECT_EQ(largest_difference(floats(now["face"]["positions_f32"]), floats(four["face"]["positions_f32"])), 0.0);
 }

@@ -29,6 +29,10 @@ export async function postJson(path, body) {
   }));
 }
 
+export async function deleteJson(path) {
+  return answer(await fetch(path, { method: 'DELETE' }));
+}
+
 /// URL of a file inside the served folder ('run/maps/x.png').
 export function fileUrl(relative) {
   return '/api/files/' + relative.split('/').map(encodeURIComponent).join('/');

@@ -16,6 +16,9 @@ const panel = document.getElementById('panel');
 const overlay = document.getElementById('overlay');
 const status = document.getElementById('status');
 window.forensim = { stage };
+// The stage draws on demand: any input in the side panel asks for a frame (views ask for their own after
+// changes that arrive later, such as a server's answer).
+for (const type of ['input', 'change', 'click']) panel.addEventListener(type, () => stage.requestRender());
 
 async function showRun(ctx, params) {
   const path = params.get('path') || '';
@@ -52,6 +55,7 @@ async function route() {
       if (mine !== generation) return;
       status.textContent = '';
       document.body.dataset.ready = '1';
+      stage.requestRender();
     },
   };
   try {

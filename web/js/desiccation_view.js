@@ -107,7 +107,7 @@ async function showRun(ctx, path, job) {
   ghost.scale.setScalar(0.001);
   ctx.stage.add(mesh);
   ctx.stage.add(ghost);
-  controls.querySelector('#ghost').onchange = (e) => { ghost.visible = e.target.checked; };
+  controls.querySelector('#ghost').onchange = (e) => { ghost.visible = e.target.checked; ctx.stage.requestRender(); };
   const frames = () => series[current];
   const draw = async (i) => {
     const frame = await loader(current)(i);
@@ -118,6 +118,7 @@ async function showRun(ctx, path, job) {
     document.body.dataset.frame = String(i);
     document.body.dataset.colour = colouring.mode.id;
     ctx.overlay.textContent = formatDays(frames()[i].time_days);
+    ctx.stage.requestRender();
   };
   const useSeries = async (name) => {
     current = name;
@@ -125,6 +126,7 @@ async function showRun(ctx, path, job) {
     ghost.geometry.dispose();
     ghost.geometry = surfaceGeometry(colouring.first, colouring.restOf(colouring.first), null);
     document.body.dataset.surface = name;
+    ctx.stage.requestRender();
   };
   await useSeries('volume');
   const timeline = steppedTimeline(ctx.panel, ctx.stage, {

@@ -3,20 +3,25 @@
 // src/server/skull_sessions.hpp) drawn over it. Drag a landmark over the skull (a ray cast in the browser) and
 // the face follows: while dragging, the newest position is sent whenever the previous answer has arrived; on
 // release the final one, and the face's vertex positions are replaced in place. Click the skull to add the
-// landmark picked in the list. Table, sex and build change the depths; the nose and mouth guides move with
-// sliders; expressions play (the server's pose blended in over the neutral face); the landmarks and the head
-// export as .mrk.json and GLB.
+// landmark picked in the list; remove the selected one with its button or the Delete key. After each change
+// (not during a drag) the skull/skin violations are counted on the server and shown. Table, sex and build
+// change the depths; the nose and mouth guides move with sliders, and the nose tip follows Krogman's rule
+// from the anterior nasal spine (ans, its tip, and ss) with a factor slider; expressions play (the server's
+// pose blended in over the neutral face); the landmarks and the head export as .mrk.json and GLB.
 //
-// window.forensim.skull exposes the state for the browser test: screenPosition(name), the face geometry and
-// `latencies` (per drag release: ms until the updated face was drawn, and the server's update time).
+// window.forensim.skull exposes the state for the browser test: screenPosition(name), the face geometry,
+// `latencies` (per drag release: ms until the updated face was drawn, and the server's update time) and the
+// last `violations` answer.
 
 import * as THREE from 'three';
-import { getJson, postJson } from './api.js';
+import { deleteJson, getJson, postJson } from './api.js';
 import { cameraControls } from './stage.js';
 import { blendPositions, confidenceColour, float32Array, median, playWeight, uint32Array } from './skull_math.js';
 import { escapeHtml, html } from './util.js';
 
 const SKULL_COLOUR = 0xe3d7bd, SKIN_COLOUR = 0xd9a68a;
+const ANTERIOR = [0, -1, 0];  // the guides' lateral (+x) x up (+z), LPS
+const SPINE = ['ans', 'ss'];  // the landmarks the nose tip's guide is measured from
 const GUIDES = [
   // key, label, axis of the guide line (0: a vertical line at x = value; 2: a horizontal one at z = value)
   ['nasal_aperture_left_mm', 'nose: aperture left', 0], ['nasal_aperture_right_mm', 'nose: aperture right', 0],
@@ -95,7 +100,28 @@ export async function showSkullEditor(ctx, params) {
 
   let landmarks = s.landmarks, addable = s.addable, selected = '', faceVersion = 0, drag = null;
   const poses = new Map();  // expression name -> positions of the current face
-  const state = { latencies: [], face, skull, markers, faceVersion: () => faceVersion };
+  const state = { latencies: [], face, skull, markers, faceVersion: () => faceVersion, violations: null };
+  let guidesReady = false;
+  const landmarkAt = (name) => {
+    const l = landmarks.find((x) => x.name === name);
+    return l ? (l.skull_mm || l.position_mm) : null;
+  };
+  // The spine from ans and ss, or null when either is missing or ans does not stand in front of ss.
+  const spine = () => {
+    const tip = landmarkAt('ans'), ss = landmarkAt('ss');
+    if (!tip || !ss) return null;
+    const length = ANTERIOR.reduce((sum, a, k) => sum + a * (tip[k] - ss[k]), 0);
+    if (!(length > 0.5)) return null;
+    return { tip, base: tip.map((v, k) => v - ANTERIOR[k] * length), length };
+  };
+  const updateSpine = () => {
+    if (!guidesReady) return;
+    const sp = spine();
+    $('spine-on').disabled = !sp && !$('spine-on').checked;
+    $('spine-info').textContent = sp ? `spine ans to ss: ${sp.length.toFixed(1)} mm` :
+      (landmarkAt('ans') && landmarkAt('ss') ? 'ans does not stand in front of ss' :
+        'needs the landmarks ans (the spine\'s tip: add it from the list) and ss');
+  };
   window.forensim.skull = state;
 
   // Panel: view toggles, depths, landmarks, guides, expressions, export.
@@ -114,12 +140,18 @@ export async function showSkullEditor(ctx, params) {
     <div class="muted">Drag a landmark over the skull to move it (the right button orbits). Colour: confidence
       (red low, green high).</div>
     <label>Add <select id="add-name"></select></label>
-    <div class="row"><button id="add">Click the skull to add</button></div>
+    <div class="row"><button id="add">Click the skull to add</button>
+      <button id="remove" disabled title="or the Delete key">Remove selected</button></div>
     <div id="landmark-info" class="muted"></div>
     <div id="skull-timing" class="muted"></div>
+    <div id="violations" class="muted"></div>
     <h2>Nose and mouth guides</h2>
     <label><input type="checkbox" id="guides-on"> apply the guides</label>
     <div id="guide-sliders"></div>
+    <label><input type="checkbox" id="spine-on"> nose tip by Krogman's rule (anterior nasal spine)</label>
+    <label>spine lengths in front of mid-philtrum <span id="krogman-label"></span>
+      <input type="range" id="krogman" min="0" max="6" step="0.1" value="3"></label>
+    <div class="muted" id="spine-info"></div>
     <h2>Expressions</h2>
     <div class="row" id="expressions"></div>
     <h2>Export</h2>
@@ -137,10 +169,11 @@ export async function showSkullEditor(ctx, params) {
     skinMaterial.opacity = $('transparent').checked ? 0.4 : 1;
     skinMaterial.depthWrite = !$('transparent').checked;
     skinMaterial.needsUpdate = true;
+    ctx.stage.requestRender();
   };
   $('transparent').onchange = setTransparent;
-  $('show-vectors').onchange = () => { vectors.visible = $('show-vectors').checked; };
-  $('show-face').onchange = () => { face.visible = $('show-face').checked; };
+  $('show-vectors').onchange = () => { vectors.visible = $('show-vectors').checked; ctx.stage.requestRender(); };
+  $('show-face').onchange = () => { face.visible = $('show-face').checked; ctx.stage.requestRender(); };
   setTransparent();
 
   const drawLandmarks = () => {
@@ -167,8 +200,11 @@ export async function showSkullEditor(ctx, params) {
     $('add').disabled = !addable.length;
     const info = landmarks.find((l) => l.name === selected);
     if (drag) drag.marker = markers.children.find((m) => m.userData.name === drag.name);
+    $('remove').disabled = !info;
+    updateSpine();
     $('landmark-info').textContent = info ? `${info.name} (${info.full_name || ''}): ${info.source}, confidence ` +
       `${info.confidence.toFixed(2)}${info.depth_mm ? `, depth ${info.depth_mm.toFixed(1)} mm` : ''}` : '';
+    ctx.stage.requestRender();
   };
 
   const setFace = (positions) => {
@@ -178,6 +214,7 @@ export async function showSkullEditor(ctx, params) {
     face.geometry.computeVertexNormals();
     face.geometry.computeBoundingSphere();
     document.body.dataset.faceVersion = String(++faceVersion);
+    ctx.stage.requestRender();
   };
   const newFace = (answer) => {
     const positions = float32Array(answer.face.positions_f32);
@@ -187,6 +224,29 @@ export async function showSkullEditor(ctx, params) {
     if (answer.landmarks) landmarks = answer.landmarks;
     if (answer.addable) addable = answer.addable;
     drawLandmarks();
+    if (!drag) countViolations();
+  };
+
+  // Skull/skin violations of the current face: counted on the server after a change has settled (a count
+  // takes longer than an update, and would hold up a drag's requests), the newest answer shown.
+  let violationTimer = null, violationAsk = 0;
+  const countViolations = (delay = 500) => {
+    clearTimeout(violationTimer);
+    const mine = ++violationAsk;
+    $('violations').textContent = 'counting skull/skin violations\u2026';
+    violationTimer = setTimeout(async () => {
+      if (drag) { countViolations(delay); return; }
+      try {
+        const v = await getJson(base + '/violations');
+        if (mine !== violationAsk) return;
+        state.violations = v;
+        $('violations').textContent = `skull through skin: ${v.skull_through_skin} vertices; skin inside skull: ` +
+          `${v.skin_inside_skull} vertices (counted in ${v.count_ms.toFixed(0)} ms)`;
+        document.body.dataset.violations = String(mine);
+      } catch (e) {
+        if (mine === violationAsk) $('violations').textContent = `violations not counted: ${e.message}`;
+      }
+    }, delay);
   };
 
   // Dragging and adding landmarks: ray casts against the markers and the skull.
@@ -225,12 +285,16 @@ export async function showSkullEditor(ctx, params) {
       $('add').classList.remove('on');
       const name = $('add-name').value;
       selected = name;
-      send(name, hit.point.toArray()).then(newFace).catch(fail);
+      send(name, hit.point.toArray()).then((a) => {
+        newFace(a);
+        if (SPINE.includes(name) && $('spine-on').checked) sendGuides();
+      }).catch(fail);
       return;
     }
     const hit = cast(event, markers.children);
     if (!hit) return;
     ctx.stage.controls.enabled = false;
+    ctx.stage.beginInteraction();
     selected = hit.object.userData.name;
     drag = { name: selected, marker: hit.object, position: null };
     drawLandmarks();
@@ -241,6 +305,7 @@ export async function showSkullEditor(ctx, params) {
     if (!hit) return;
     drag.position = hit.point.toArray();
     drag.marker.position.copy(hit.point);
+    ctx.stage.requestRender();
     sendLive(drag.name, drag.position);
   });
   const release = async () => {
@@ -249,7 +314,10 @@ export async function showSkullEditor(ctx, params) {
     drag = null;
     pending = null;
     ctx.stage.controls.enabled = true;
-    if (!position) return;
+    if (!position) {
+      ctx.stage.endInteraction();
+      return;
+    }
     const released = performance.now();
     try {
       // The answer for the final position: the live request's when it went from there, else a new one, sent
@@ -262,17 +330,24 @@ export async function showSkullEditor(ctx, params) {
       const answer = same ? lastAnswer.answer : await send(name, position);
       const received = performance.now();
       newFace(answer);
+      if (SPINE.includes(name) && $('spine-on').checked) sendGuides();
       const applied = performance.now();
       const drawn = await nextFrame();
+      ctx.stage.endInteraction();  // drawn at the drag's pixel ratio first, then at the full one
+      // The frame after the one that drew the face starts once that one was shown (the compositor waits for
+      // the renderer), so it tells when the new face was on screen.
+      const shown = await nextFrame();
       const latency = {
         total_ms: drawn - released, wait_ms: waited - released, request_ms: received - waited,
-        apply_ms: applied - received, frame_ms: drawn - applied, server_ms: answer.update_ms, reused: same,
+        apply_ms: applied - received, frame_ms: drawn - applied, shown_ms: shown - released,
+        server_ms: answer.update_ms, reused: same,
       };
       state.latencies.push(latency);
       $('skull-timing').textContent = `face updated ${latency.total_ms.toFixed(0)} ms after release (server ` +
         `${answer.update_ms.toFixed(0)} ms; median of ${state.latencies.length}: ` +
         `${median(state.latencies.map((l) => l.total_ms)).toFixed(0)} ms)`;
     } catch (e) {
+      ctx.stage.endInteraction();
       fail(e);
       drawLandmarks();
     }
@@ -280,6 +355,28 @@ export async function showSkullEditor(ctx, params) {
   canvas.addEventListener('pointerup', release);
   canvas.addEventListener('pointerleave', release);
   $('add').onclick = () => { adding = !adding; $('add').classList.toggle('on', adding); };
+  // Removing the selected landmark: its pair leaves the warp (refused while fewer than 4 pairs would remain).
+  const removeSelected = async () => {
+    if (!selected || drag) return;
+    const name = selected;
+    try {
+      const a = await deleteJson(base + '/landmarks/' + encodeURIComponent(name));
+      selected = '';
+      newFace(a);
+      status.className = 'muted';
+      $('landmark-info').textContent = `${name} removed (${a.warp_pairs} warp pairs)`;
+      if (SPINE.includes(name) && $('spine-on').checked) sendGuides();
+    } catch (e) { fail(e); }
+  };
+  $('remove').onclick = removeSelected;
+  const onKey = (event) => {
+    if (!document.body.contains(controls)) { window.removeEventListener('keydown', onKey); return; }
+    if (event.key !== 'Delete' && event.key !== 'Backspace') return;
+    if (/^(INPUT|SELECT|TEXTAREA)$/.test(event.target.tagName)) return;
+    event.preventDefault();
+    removeSelected();
+  };
+  window.addEventListener('keydown', onKey);
   state.screenPosition = (name) => {
     const l = landmarks.find((x) => x.name === name);
     if (!l) return null;
@@ -304,7 +401,9 @@ export async function showSkullEditor(ctx, params) {
   };
   $('table').onchange = $('sex').onchange = $('build').onchange = setDepths;
 
-  // Guides: one slider per value, starting where the face is; lines in front of the face show them.
+  // Guides: one slider per value, starting where the face is; lines in front of the face show them. The nose
+  // tip's guide is the anterior nasal spine: its tip the landmark ans, its base on the spine's axis (the
+  // guides' anterior direction) at the depth of subspinale ss (as skull_guides.hpp measures it).
   const sliders = $('guide-sliders');
   const values = { ...s.guide_values };
   for (const [key, label] of GUIDES) {
@@ -325,6 +424,13 @@ export async function showSkullEditor(ctx, params) {
       if (axis === 0) points.push(v, y, mouth - 0.12 * headSize.z, v, y, mouth + 0.25 * headSize.z);
       else points.push(cx - 0.2 * headSize.x, y, v, cx + 0.2 * headSize.x, y, v);
     }
+    const sp = spine();
+    if ($('spine-on').checked && sp) {
+      // The spine, and its extension to where Krogman's rule puts the nose tip's depth.
+      const reach = sp.length * (1 + Number($('krogman').value));
+      points.push(...sp.base, ...sp.tip.map((v, k) => v + ANTERIOR[k] * reach));
+      guideLines.visible = true;
+    }
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.Float32BufferAttribute(points, 3));
     guideLines.add(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0xffd54f })));
@@ -332,7 +438,12 @@ export async function showSkullEditor(ctx, params) {
   const sendGuides = async () => {
     drawGuides();
     try {
-      const guides = $('guides-on').checked ? { ...values } : null;
+      let guides = $('guides-on').checked ? { ...values } : null;
+      const sp = $('spine-on').checked ? spine() : null;
+      if (sp) {
+        guides = { ...(guides || {}), nasal_spine_base: sp.base, nasal_spine_tip: sp.tip,
+                   krogman_factor: Number($('krogman').value) };
+      }
       newFace(await postJson(base + '/guides', { guides }));
       document.body.dataset.guides = guides ? 'on' : 'off';
     } catch (e) { fail(e); }
@@ -346,6 +457,16 @@ export async function showSkullEditor(ctx, params) {
     input.onchange = () => { if ($('guides-on').checked) sendGuides(); };
   }
   $('guides-on').onchange = sendGuides;
+  $('krogman').value = s.guides?.krogman_factor ?? 3;
+  $('krogman-label').textContent = Number($('krogman').value).toFixed(1);
+  $('krogman').oninput = () => {
+    $('krogman-label').textContent = Number($('krogman').value).toFixed(1);
+    drawGuides();
+  };
+  $('krogman').onchange = () => { if ($('spine-on').checked) sendGuides(); };
+  $('spine-on').onchange = sendGuides;
+  guidesReady = true;
+  updateSpine();
   drawGuides();
 
   // Expressions: the server's pose of the current face, played over the neutral face.
@@ -361,6 +482,7 @@ export async function showSkullEditor(ctx, params) {
           poses.set(name, float32Array(a.positions_f32));
         }
         playing = { pose: poses.get(name), start: performance.now(), name };
+        ctx.stage.requestRender();
       } catch (e) { fail(e); }
     };
     $('expressions').appendChild(b);
@@ -369,6 +491,7 @@ export async function showSkullEditor(ctx, params) {
   const PLAY_S = 2.0;
   ctx.stage.onFrame = (now) => {
     if (!playing) return;
+    ctx.stage.requestRender();  // the next pose, and the neutral face once played
     const t = (now - playing.start) / 1000;
     const attribute = face.geometry.attributes.position;
     attribute.array.set(blendPositions(work, neutral, playing.pose, playWeight(t, PLAY_S)));
@@ -393,6 +516,7 @@ export async function showSkullEditor(ctx, params) {
 
   cameraControls(ctx.panel, ctx.stage, 'forensim_skull.png');
   drawLandmarks();
+  countViolations(0);
   document.body.dataset.faceVersion = '0';
   ctx.ready();
 }

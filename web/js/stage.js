@@ -1,6 +1,14 @@
 // The 3D stage every view draws on: a three.js renderer on the page's canvas, orbit controls, lights,
 // camera presets around the object's bounding box (forensim's frame is z-up), screenshot export and a
 // frame-rate meter.
+//
+// Drawn on demand: a frame is drawn only after something asked for one with requestRender() (the camera
+// controls' changes, the stage's own content, size and camera changes, any input in the side panel, and each
+// view after it changes a mesh, a material or a uniform), so an idle page costs nothing and, on a CPU
+// renderer (SwiftShader: a few frames/s), a change waits for at most the frame in progress instead of up to
+// two. Drawing continues while something animates: a view's onFrame(now), called before each frame, asks for
+// the next one while its timeline or expression plays. While the user drags (beginInteraction() to
+// endInteraction(), or an orbit of the controls), a CPU renderer draws at half the pixel ratio.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -39,7 +47,7 @@ export class Stage {
     this.antialias = !this.webgl.software;
     // preserveDrawingBuffer: screenshots read the canvas after the frame was shown.
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: this.antialias, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));  // this.pixelRatio, set below
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0x30343a);
@@ -55,21 +63,49 @@ export class Stage {
     this.content = new THREE.Group();
     this.scene.add(this.content);
     this.box = new THREE.Box3(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
-    this.frameTimes = [];
-    this.onFrame = null;
-    this.running = true;
-    new ResizeObserver(() => this.resize()).observe(canvas);
-    this.resize();
-    const loop = (now) => {
-      if (!this.running) return;
+    this.frameTimes = [];  // when the last frames were drawn (ms, performance.now())
+    this.drawn = 0;        // frames drawn since the page opened
+    this.onFrame = null;   // (now) => called before each frame; it calls requestRender() to keep animating
+    this.scheduled = false;
+    this.interactions = 0;
+    this.pixelRatio = Math.min(window.devicePixelRatio, 2);
+    // Dragging on a CPU renderer: a quarter of the pixels, about four times the frame rate.
+    this.dragPixelRatio = this.webgl.software ? this.pixelRatio / 2 : this.pixelRatio;
+    this.controls.addEventListener('change', () => this.requestRender());
+    this.controls.addEventListener('start', () => this.beginInteraction());
+    this.controls.addEventListener('end', () => this.endInteraction());
+    this.draw = (now) => {
+      this.scheduled = false;
       this.frameTimes.push(now);
       if (this.frameTimes.length > 120) this.frameTimes.shift();
       if (this.onFrame) this.onFrame(now);
-      this.controls.update();
+      if (this.controls.update()) this.requestRender();  // damping still moving the camera
+      const ratio = this.interactions > 0 ? this.dragPixelRatio : this.pixelRatio;
+      if (this.renderer.getPixelRatio() !== ratio) this.renderer.setPixelRatio(ratio);
       this.renderer.render(this.scene, this.camera);
-      requestAnimationFrame(loop);
+      ++this.drawn;
     };
-    requestAnimationFrame(loop);
+    new ResizeObserver(() => this.resize()).observe(canvas);
+    this.resize();
+  }
+
+  /// Asks for a frame: drawn at the next animation frame, once however often it is asked for before.
+  requestRender() {
+    if (this.scheduled) return;
+    this.scheduled = true;
+    requestAnimationFrame(this.draw);
+  }
+
+  /// A drag begins (a landmark, a brush stroke): until the matching endInteraction(), frames are drawn at the
+  /// reduced pixel ratio of a CPU renderer.
+  beginInteraction() {
+    ++this.interactions;
+  }
+
+  /// The drag ended: the next frame is drawn at the full pixel ratio.
+  endInteraction() {
+    this.interactions = Math.max(0, this.interactions - 1);
+    this.requestRender();
   }
 
   resize() {
@@ -77,6 +113,7 @@ export class Stage {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.requestRender();
   }
 
   /// Removes what the previous view showed (disposing its GPU resources).
@@ -89,10 +126,13 @@ export class Stage {
         if (o.material) (Array.isArray(o.material) ? o.material : [o.material]).forEach((m) => m.dispose());
       });
     }
+    this.interactions = 0;
+    this.requestRender();
   }
 
   add(object) {
     this.content.add(object);
+    this.requestRender();
   }
 
   /// Frames the camera on `object` (or the whole content) from a preset direction.
@@ -113,21 +153,25 @@ export class Stage {
     this.camera.position.copy(centre).addScaledVector(dir, distance);
     this.controls.target.copy(centre);
     this.controls.update();
+    this.requestRender();
   }
 
   static presetNames() {
     return Object.keys(PRESETS);
   }
 
-  /// Frames per second over the last frames drawn.
+  /// Frames per second over the frames drawn in the last two seconds (0 when fewer than two were: the page
+  /// draws only on change).
   fps() {
-    const t = this.frameTimes;
+    const now = performance.now();
+    const t = this.frameTimes.filter((x) => now - x < 2000);
     if (t.length < 2) return 0;
     return (1000 * (t.length - 1)) / (t[t.length - 1] - t[0]);
   }
 
   /// Saves what the canvas shows as a PNG download named `name`.
   screenshot(name = 'forensim.png') {
+    this.renderer.setPixelRatio(this.pixelRatio);
     this.renderer.render(this.scene, this.camera);
     const url = this.canvas.toDataURL('image/png');
     const a = document.createElement('a');
@@ -186,6 +230,7 @@ export function cutControls(parent, stage) {
         m.clipShadows = true;
       }
     });
+    stage.requestRender();
   };
   on.onchange = axis.onchange = at.oninput = apply;
   return { apply };

@@ -35,6 +35,7 @@ export async function showSurfaceRun(ctx, path) {
       mesh.geometry = surfaceGeometry(frame, frame.positions, colouring.colours(frame));
       if (cut) cut.apply();
       document.body.dataset.colour = colouring.mode.id;
+      ctx.stage.requestRender();
     };
     const colouring = new FrameColouring(controls, draw);
     const open = async () => {

@@ -1,5 +1,6 @@
 // A timeline slider with play/pause and the time shown in real units, for the wound timeline (continuous
-// time on a log scale) and desiccation frames (discrete steps).
+// time on a log scale) and desiccation frames (discrete steps). Each change asks the stage for a frame; while
+// playing, every frame asks for the next.
 
 import { formatInjuryTime, sliderToTime, timeToSlider } from './time_units.js';
 
@@ -24,6 +25,7 @@ export function continuousTimeline(parent, stage, { t0, t1, onTime, loopSeconds 
     const t = sliderToTime(x, t0, t1);
     label.textContent = formatInjuryTime(t);
     onTime(t);
+    stage.requestRender();
   };
   slider.oninput = () => apply(slider.value / 1000);
   play.onclick = () => {
@@ -31,11 +33,13 @@ export function continuousTimeline(parent, stage, { t0, t1, onTime, loopSeconds 
     play.textContent = playing ? 'Pause' : 'Play';
     play.classList.toggle('on', playing);
     last = performance.now();
+    stage.requestRender();
   };
   const previous = stage.onFrame;
   stage.onFrame = (now) => {
     if (previous) previous(now);
     if (!playing) return;
+    stage.requestRender();
     let x = slider.value / 1000 + (now - last) / 1000 / loopSeconds;
     last = now;
     if (x > 1) x -= 1;
@@ -73,6 +77,7 @@ export function steppedTimeline(parent, stage, { count, labelOf, onStep, stepSec
       await onStep(index);
     } finally {
       busy = false;
+      stage.requestRender();
     }
   };
   slider.oninput = () => go(Number(slider.value));
@@ -82,10 +87,12 @@ export function steppedTimeline(parent, stage, { count, labelOf, onStep, stepSec
     playing = !playing;
     play.textContent = playing ? 'Pause' : 'Play';
     play.classList.toggle('on', playing);
+    stage.requestRender();
   };
   const previous = stage.onFrame;
   stage.onFrame = (now) => {
     if (previous) previous(now);
+    if (playing) stage.requestRender();  // to look at the clock again
     if (!playing || busy || now - last < stepSeconds * 1000) return;
     last = now;
     go(index + 1 > Number(slider.max) ? 0 : index + 1);

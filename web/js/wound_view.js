@@ -42,7 +42,8 @@ function showTimeline(ctx, object, tl, title) {
   const fps = html(ctx.panel, '<div class="muted" id="fps"></div>');
   const timer = setInterval(() => {
     if (!document.body.contains(fps)) return clearInterval(timer);
-    fps.firstChild.textContent = `${ctx.stage.fps().toFixed(0)} frames/s`;
+    const rate = ctx.stage.fps();
+    fps.firstChild.textContent = rate > 0 ? `${rate.toFixed(0)} frames/s` : 'idle (drawn on change)';
   }, 500);
   window.forensim.timeline = tl;
   window.forensim.timelineControl = control;
@@ -136,6 +137,7 @@ export async function showWoundEditor(ctx, params) {
     const dot = new THREE.Mesh(new THREE.SphereGeometry(radius / 1000 / 2, 10, 8), markMaterial);
     dot.position.copy(p);
     marks.add(dot);
+    ctx.stage.requestRender();
   };
   const updateInfo = () => {
     const n = strokes.reduce((s, k) => s + k.points.length, 0);
@@ -148,6 +150,7 @@ export async function showWoundEditor(ctx, params) {
     const p = hit(event);
     if (!p) return;
     ctx.stage.controls.enabled = false;
+    ctx.stage.beginInteraction();
     current = { points: [], radius_mm: Number($('radius').value) };
     addPoint(p);
   });
@@ -161,6 +164,7 @@ export async function showWoundEditor(ctx, params) {
     strokes.push(current);
     current = null;
     ctx.stage.controls.enabled = true;
+    ctx.stage.endInteraction();
     updateInfo();
   };
   canvas.addEventListener('pointerup', finish);
@@ -173,6 +177,7 @@ export async function showWoundEditor(ctx, params) {
   $('clear').onclick = () => {
     strokes.length = 0;
     for (const c of [...marks.children]) { marks.remove(c); c.geometry.dispose(); }
+    ctx.stage.requestRender();
     updateInfo();
   };
   $('generate').onclick = async () => {
