@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/error.hpp"
@@ -112,10 +113,18 @@ Plane midsagittal_plane(const LandmarkSet& skull_landmarks) {
 
 SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const Plane& initial, const SymmetryPlaneOptions& options) {
   if (mesh.triangles.empty()) throw InputError("symmetry plane", "mesh", "has no triangles");
+  return fit_symmetry_plane(mesh, ClosestPointQuery(mesh), initial, options);
+}
+
+SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const ClosestPointQuery& query, const Plane& initial,
+                                    const SymmetryPlaneOptions& options) {
+  if (mesh.triangles.empty()) throw InputError("symmetry plane", "mesh", "has no triangles");
+  if (query.triangle_count() != mesh.triangles.size()) {
+    throw InputError("symmetry plane", "query", "was not built on this mesh (its triangle count differs)");
+  }
   if (!initial.normal.allFinite() || initial.normal.norm() < 1e-12 || !initial.point.allFinite()) {
     throw InputError("symmetry plane", "initial plane", "is not finite or has a zero normal");
   }
-  const ClosestPointQuery query(mesh);
   const std::vector<Vec3> normals = face_normals(mesh);
   const std::size_t stride = std::max<std::size_t>(
       1, (mesh.positions.size() + options.max_samples - 1) / std::max<std::size_t>(1, options.max_samples));
@@ -133,12 +142,23 @@ SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const Plane& initial, c
     Vec3 c;  // closest mesh point of the mirrored sample
     Vec3 m;  // mesh normal there
   };
+  // The closest points of the previous iteration bound the next searches (they lie on the mesh): same answers,
+  // found sooner.
+  std::vector<Vec3> previous;
   const auto correspondences = [&](const Vec3& normal, double offset) {
     std::vector<Vec3> mirrored(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {
       mirrored[i] = samples[i] - 2.0 * (normal.dot(samples[i]) - offset) * normal + origin;
     }
-    const auto hits = query.query_batch(mirrored);
+    std::vector<double> bounds(samples.size(), std::numeric_limits<double>::infinity());
+    if (previous.size() == samples.size()) {
+      for (std::size_t i = 0; i < samples.size(); ++i) bounds[i] = (mirrored[i] - previous[i]).norm();
+    }
+    const auto hits = query.query_batch_bounded(mirrored, bounds);
+    previous.assign(samples.size(), Vec3::Constant(std::numeric_limits<double>::infinity()));
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (hits[i]) previous[i] = hits[i]->point;
+    }
     std::vector<Pair> pairs;
     pairs.reserve(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {

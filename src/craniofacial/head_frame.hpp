@@ -11,6 +11,7 @@
 #include "core/types.hpp"
 #include "craniofacial/landmark_set.hpp"
 #include "geometry/tri_mesh.hpp"
+#include "spatial/closest_point.hpp"
 
 namespace forensim {
 
@@ -59,6 +60,10 @@ struct SymmetryPlaneFit {
 /// step on the plane's normal and offset reduces sum (m . (mirror(v) - c))^2; repeated until the plane moves
 /// less than the tolerance. Deterministic (batch queries keep their order). Throws InputError for an empty mesh.
 SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const Plane& initial,
+                                    const SymmetryPlaneOptions& options = {});
+/// As above on a prebuilt closest-point query of `mesh` (ClosestPointQuery(mesh)), for several fits on one mesh
+/// without rebuilding its BVH each time. Same result.
+SymmetryPlaneFit fit_symmetry_plane(const TriMesh& mesh, const ClosestPointQuery& query, const Plane& initial,
                                     const SymmetryPlaneOptions& options = {});
 
 /// Right-handed anatomical frame in LPS orientation: x towards the subject's left, y posterior, z superior.

@@ -76,8 +76,9 @@ struct Correspondences {
   std::vector<Vec3> fixed;
   std::vector<Vec3> normal;
   std::vector<double> distance;
-  std::vector<char> valid;  ///< the pair exists (forward: in the target's view, not on a cap)
-  std::vector<char> kept;   ///< valid and not trimmed
+  std::vector<Vec3> surface_point;  ///< the closest point in the searched mesh's own coordinates
+  std::vector<char> valid;          ///< the pair exists (forward: in the target's view, not on a cap)
+  std::vector<char> kept;           ///< valid and not trimmed
   double trimmed_rms = 0.0;
   std::size_t kept_count = 0;
 };
@@ -110,11 +111,23 @@ void trim(Correspondences& c, double trim_fraction) {
   c.trimmed_rms = std::sqrt(sum / static_cast<double>(c.kept_count));
 }
 
+/// Closest points of `points` on `surface`; `previous` (pairs of the same points before they moved, or null)
+/// bounds each search by the distance to the previous closest point, which lies on the surface: the same
+/// answer, found sooner.
+std::vector<std::optional<ClosestPoint>> closest_points(const TargetSurface& surface, const std::vector<Vec3>& points,
+                                                        const Correspondences* previous) {
+  if (!previous || previous->surface_point.size() != points.size()) return surface.query.query_batch(points);
+  std::vector<double> bounds(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) bounds[i] = (points[i] - previous->surface_point[i]).norm();
+  return surface.query.query_batch_bounded(points, bounds);
+}
+
 /// Closest target points of `points`: pairs outside the target's view or onto a cap are invalid, the worst
-/// `trim_fraction` of the rest dropped.
-Correspondences correspond(const TargetSurface& target, const std::vector<Vec3>& points, double trim_fraction) {
+/// `trim_fraction` of the rest dropped. `previous`: as closest_points.
+Correspondences correspond(const TargetSurface& target, const std::vector<Vec3>& points, double trim_fraction,
+                           const Correspondences* previous = nullptr) {
   Correspondences c;
-  const auto hits = target.query.query_batch(points);
+  const auto hits = closest_points(target, points, previous);
   const std::size_t n = points.size();
   c.moving = points;
   c.fixed.resize(n);
@@ -128,6 +141,7 @@ Correspondences correspond(const TargetSurface& target, const std::vector<Vec3>&
     c.distance[i] = hits[i]->distance;
     c.valid[i] = static_cast<char>(!target.cap[f] && target.view.contains(points[i]));
   }
+  c.surface_point = c.fixed;
   trim(c, trim_fraction);
   return c;
 }
@@ -135,19 +149,22 @@ Correspondences correspond(const TargetSurface& target, const std::vector<Vec3>&
 /// Closest points on the mapped reference of the target samples `targets`, found on the unmapped reference
 /// (`reference`) through the inverse map; the worst `trim_fraction` dropped.
 Correspondences correspond_reverse(const TargetSurface& reference, const Similarity& map,
-                                   const std::vector<Vec3>& targets, double trim_fraction) {
+                                   const std::vector<Vec3>& targets, double trim_fraction,
+                                   const Correspondences* previous = nullptr) {
   Correspondences c;
   const std::size_t n = targets.size();
   const Mat3 inverse = map.rotation.transpose() / map.scale;
   std::vector<Vec3> z(n);
   for (std::size_t i = 0; i < n; ++i) z[i] = inverse * (targets[i] - map.translation);
-  const auto hits = reference.query.query_batch(z);
+  const auto hits = closest_points(reference, z, previous);
   c.moving.resize(n);
   c.fixed = targets;
   c.normal.resize(n);
   c.distance.resize(n);
   c.valid.assign(n, 1);
+  c.surface_point.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
+    c.surface_point[i] = hits[i]->point;
     c.moving[i] = map.apply(hits[i]->point);
     c.normal[i] = map.rotation * reference.face_normals[static_cast<std::size_t>(hits[i]->triangle)];
     c.distance[i] = map.scale * hits[i]->distance;
@@ -159,6 +176,7 @@ Correspondences correspond_reverse(const TargetSurface& reference, const Similar
 struct IcpResult {
   Similarity similarity;
   double rms = std::numeric_limits<double>::infinity();
+  double forward_rms = std::numeric_limits<double>::infinity();  ///< reference -> target pairs only
   int iterations = 0;
 };
 
@@ -196,16 +214,19 @@ struct TwoWayPairs {
   double rms = std::numeric_limits<double>::infinity();
 };
 
-TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const SimilarityRegistrationOptions& options) {
+/// `previous`: the pairs under the previous map (or null), whose closest points bound the searches.
+TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const SimilarityRegistrationOptions& options,
+                     const TwoWayPairs* previous = nullptr) {
   TwoWayPairs p;
   std::vector<Vec3> x(problem.reference_samples.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = map.apply(problem.reference_samples[i]);
-  p.forward = correspond(problem.target, x, options.trim_fraction);
+  p.forward = correspond(problem.target, x, options.trim_fraction, previous ? &previous->forward : nullptr);
   const double w = options.reverse_weight;
   double f2 = p.forward.kept_count > 0 ? p.forward.trimmed_rms * p.forward.trimmed_rms
                                        : std::numeric_limits<double>::infinity();
   if (w > 0.0) {
-    p.reverse = correspond_reverse(problem.reference, map, problem.target_samples, options.reverse_trim_fraction);
+    p.reverse = correspond_reverse(problem.reference, map, problem.target_samples, options.reverse_trim_fraction,
+                                   previous ? &previous->reverse : nullptr);
     const double r2 = p.reverse.trimmed_rms * p.reverse.trimmed_rms;
     p.rms = std::sqrt((f2 + w * r2) / (1.0 + w));
   } else {
@@ -215,9 +236,11 @@ TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const Similar
 }
 
 /// `plane`: when not null, the target's symmetry plane that the reference's stays on (only the turn about its
-/// normal, the scale about a point on it and shifts within it are free).
+/// normal, the scale about a point on it and shifts within it are free). `settle`: stop at the noise floor
+/// (options.stall_iterations) and keep the lowest-RMS iterate, for the final run; the brief runs that rank the
+/// starts take their fixed iterations.
 IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const SimilarityRegistrationOptions& options,
-                     int max_iterations, const Plane* plane = nullptr) {
+                     int max_iterations, const Plane* plane = nullptr, bool settle = false) {
   Eigen::Matrix<double, 7, 4> basis = Eigen::Matrix<double, 7, 4>::Zero();
   if (plane) {
     const Vec3 n = plane->normal.normalized();
@@ -230,12 +253,28 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
   }
   IcpResult result;
   result.similarity = start;
+  IcpResult best;  // the lowest trimmed RMS so far
+  double stall_reference = std::numeric_limits<double>::infinity();
+  int stalled = 0;
   const double w2 = options.point_weight * options.point_weight;
+  TwoWayPairs p;
   for (int it = 0; it < max_iterations; ++it) {
-    const TwoWayPairs p = pairs_of(problem, result.similarity, options);
+    p = pairs_of(problem, result.similarity, options, it > 0 ? &p : nullptr);
     result.rms = p.rms;
+    result.forward_rms = p.forward.kept_count > 0 ? p.forward.trimmed_rms : std::numeric_limits<double>::infinity();
     result.iterations = it;
     if (p.forward.kept_count == 0) break;  // the reference left the target's view
+    if (settle && p.rms < best.rms) best = result;
+    // At the noise floor of the trimmed pairs (the kept set flips) the RMS stops falling and the steps never
+    // reach the tolerance: stop once it has not fallen by stall_tolerance for stall_iterations iterations.
+    if (settle && options.stall_iterations > 0) {
+      if (p.rms < stall_reference * (1.0 - options.stall_tolerance)) {
+        stall_reference = p.rms;
+        stalled = 0;
+      } else if (++stalled >= options.stall_iterations) {
+        break;
+      }
+    }
     Vec3 c0 = Vec3::Zero();
     for (std::size_t i = 0; i < p.forward.moving.size(); ++i) {
       if (p.forward.kept[i]) c0 += p.forward.moving[i];
@@ -291,7 +330,14 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
     result.similarity = next;
     if (angle + std::abs(sigma) + tau.norm() / size < options.tolerance) break;
   }
-  result.rms = pairs_of(problem, result.similarity, options).rms;
+  const TwoWayPairs last = pairs_of(problem, result.similarity, options, max_iterations > 0 ? &p : nullptr);
+  result.rms = last.rms;
+  result.forward_rms = last.forward.kept_count > 0 ? last.forward.trimmed_rms : std::numeric_limits<double>::infinity();
+  if (best.rms < result.rms) {
+    const int iterations = result.iterations;
+    result = best;
+    result.iterations = iterations;
+  }
   return result;
 }
 
@@ -342,7 +388,10 @@ Mat3 rotation_between(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-SymmetryPlaneFit fit_target_symmetry(const TriMesh& target) {
+namespace {
+
+/// fit_target_symmetry on a prebuilt query of `target` (one BVH for all the fits).
+SymmetryPlaneFit fit_target_symmetry(const TriMesh& target, const ClosestPointQuery& query) {
   check_mesh(target, "target skull");
   const Moments mt = moments(target.positions);
   const Eigen::SelfAdjointEigenSolver<Mat3> et(mt.covariance);
@@ -352,10 +401,17 @@ SymmetryPlaneFit fit_target_symmetry(const TriMesh& target) {
   std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   for (int k = 0; k < 3; ++k) normals.push_back(et.eigenvectors().col(k));
   for (const Vec3& n : normals) {
-    const SymmetryPlaneFit fit = fit_symmetry_plane(target, Plane{mt.centroid, n}, o);
+    const SymmetryPlaneFit fit = fit_symmetry_plane(target, query, Plane{mt.centroid, n}, o);
     if (fit.rms_mm < best.rms_mm) best = fit;
   }
   return best;
+}
+
+}  // namespace
+
+SymmetryPlaneFit fit_target_symmetry(const TriMesh& target) {
+  check_mesh(target, "target skull");
+  return fit_target_symmetry(target, ClosestPointQuery(target));
 }
 
 namespace {
@@ -367,6 +423,9 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   check_mesh(target, "target skull");
   require_input(options.max_samples >= 16, "similarity registration", "max_samples", "must be at least 16");
   require_input(options.max_iterations >= 1, "similarity registration", "max_iterations", "must be at least 1");
+  require_input(options.final_candidates >= 1, "similarity registration", "final_candidates", "must be at least 1");
+  require_input(options.stall_iterations >= 0, "similarity registration", "stall_iterations", "must not be negative");
+  require_input(options.stall_tolerance >= 0.0, "similarity registration", "stall_tolerance", "must not be negative");
   require_input(options.trim_fraction >= 0.0 && options.trim_fraction < 0.9, "similarity registration", "trim_fraction",
                 "must lie in [0, 0.9)");
   require_input(options.reverse_trim_fraction >= 0.0 && options.reverse_trim_fraction < 0.9, "similarity registration",
@@ -382,13 +441,16 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   // With the prior both skulls are in mm and the start is its centre, scale 1: a partial target biases the moments.
   const double start_scale = options.scale_prior_sd > 0.0 ? 1.0 : moment_scale;
 
+  const TargetSurface reference_surface(reference, ScanFieldOfView{});
   std::optional<Plane> plane;
   Plane reference_plane;
   std::vector<Mat3> rotations;
   if (options.reference_midsagittal) {
-    plane = fit_target_symmetry(target).plane;
+    plane = fit_target_symmetry(target, surface.query).plane;
     // The reference's plane refined by the same fit, so that both are the planes of best symmetry.
-    reference_plane = fit_symmetry_plane(reference, *options.reference_midsagittal, symmetry_options()).plane;
+    reference_plane =
+        fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal, symmetry_options())
+            .plane;
     const Vec3 nr = reference_plane.normal;
     for (double sign : {1.0, -1.0}) {
       const Mat3 base = rotation_between(nr, sign * plane->normal);
@@ -427,7 +489,6 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     }
     starts.push_back(s);
   }
-  const TargetSurface reference_surface(reference, ScanFieldOfView{});
   const std::vector<Vec3> samples = sample_vertices(reference, options.max_samples);
   const std::vector<Vec3> targets = target_samples(target, surface, options.max_samples / 2);
   // Every start briefly on few samples, the best few further, then the best on all samples.
@@ -443,27 +504,45 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   std::vector<std::size_t> order(runs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].rms < runs[b].rms; });
-  IcpResult best;
-  for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
-    const IcpResult r = scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                   std::min(options.max_iterations, 25), plane ? &*plane : nullptr);
-    if (r.rms < best.rms) best = r;  // strict: the earliest wins ties
+  // The best few further on few samples, then ranked by their RMS (the lowest gives the target's plane).
+  std::vector<IcpResult> candidates;
+  for (std::size_t k = 0; k < std::min<std::size_t>(std::max<std::size_t>(3, options.final_candidates), order.size());
+       ++k) {
+    candidates.push_back(scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
+                                    std::min(options.max_iterations, 25), plane ? &*plane : nullptr));
   }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const IcpResult& a, const IcpResult& b) { return a.rms < b.rms; });
+  candidates.resize(std::min(candidates.size(), options.final_candidates));
+  const std::size_t lowest = 0;
   const TwoWay problem{surface, reference_surface, samples, targets};
   if (plane) {
     // The target's plane refitted from the registered reference's (the first fit started from the axes), and
-    // the similarity turned and shifted onto it.
-    const Similarity& b = best.similarity;
-    const Vec3 mapped_normal = b.rotation * reference_plane.normal;
-    plane = fit_symmetry_plane(target, Plane{b.apply(reference_plane.point), mapped_normal}, symmetry_options()).plane;
-    const Vec3 on = b.apply(reference_plane.point);
-    const Mat3 turn = rotation_between(mapped_normal, plane->normal);
-    best.similarity.rotation = turn * b.rotation;
-    best.similarity.translation = turn * (b.translation - on) + on;
-    best.similarity.translation -= plane->signed_distance(best.similarity.apply(reference_plane.point)) * plane->normal;
+    // every candidate turned and shifted onto it.
+    const Similarity& b = candidates[lowest].similarity;
+    plane = fit_symmetry_plane(target, surface.query,
+                               Plane{b.apply(reference_plane.point), b.rotation * reference_plane.normal},
+                               symmetry_options())
+                .plane;
+    for (IcpResult& c : candidates) {
+      const Similarity a = c.similarity;
+      const Vec3 mapped_normal = a.rotation * reference_plane.normal;
+      const Vec3 on = a.apply(reference_plane.point);
+      const Mat3 turn = rotation_between(mapped_normal, plane->normal);
+      c.similarity.rotation = turn * a.rotation;
+      c.similarity.translation = turn * (a.translation - on) + on;
+      c.similarity.translation -= plane->signed_distance(c.similarity.apply(reference_plane.point)) * plane->normal;
+    }
   }
-  IcpResult fine =
-      scaled_icp(problem, best.similarity, size, options, options.max_iterations, plane ? &*plane : nullptr);
+  // Each candidate on all samples; kept: the lowest RMS of the reference -> target pairs (the fit the landmarks
+  // are carried by). Candidates of different pitch about the plane's normal can have nearly equal two-way RMS
+  // (the reverse pairs also count parts the reference lacks), while the forward pairs tell them apart.
+  IcpResult fine;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const IcpResult r = scaled_icp(problem, candidates[k].similarity, size, options, options.max_iterations,
+                                   plane ? &*plane : nullptr, true);
+    if (k == 0 || r.forward_rms < fine.forward_rms) fine = r;  // strict: the earliest wins ties
+  }
 
   if (samples_out) *samples_out = samples;
   if (target_plane_out) *target_plane_out = plane;
@@ -539,9 +618,9 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
   std::vector<Vec3> y(s_count);
   for (std::size_t i = 0; i < s_count; ++i) y[i] = sim.similarity.apply(samples[i]);
   // Reference -> target, as the non-rigid stage measures it.
-  reg.similarity_rms_mm =
-      correspond(surface, y, options.non_rigid_enabled ? nr.trim_fraction : options.similarity.trim_fraction)
-          .trimmed_rms;
+  const Correspondences similarity_pairs =
+      correspond(surface, y, options.non_rigid_enabled ? nr.trim_fraction : options.similarity.trim_fraction);
+  reg.similarity_rms_mm = similarity_pairs.trimmed_rms;
   reg.rms_mm = reg.similarity_rms_mm;
 
   if (options.non_rigid_enabled) {
@@ -591,10 +670,11 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
     }
     Eigen::MatrixXd w = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_nodes), 3);
     std::vector<Vec3> x = y;
+    Correspondences c = similarity_pairs;
     double rms = reg.similarity_rms_mm;
     for (double stiffness : nr.stiffness_schedule) {
       for (int it = 0; it < nr.iterations_per_stage; ++it) {
-        const Correspondences c = correspond(surface, x, nr.trim_fraction);
+        c = correspond(surface, x, nr.trim_fraction, &c);
         rms = c.trimmed_rms;
         Eigen::MatrixXd am = a;
         Eigen::MatrixXd d(static_cast<Eigen::Index>(s_count), 3);
@@ -619,14 +699,14 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
     }
     reg.node_weights.resize(n_nodes);
     for (std::size_t j = 0; j < n_nodes; ++j) reg.node_weights[j] = w.row(static_cast<Eigen::Index>(j)).transpose();
-    const Correspondences c = correspond(surface, x, nr.trim_fraction);
+    c = correspond(surface, x, nr.trim_fraction, &c);
     rms = c.trimmed_rms;
     reg.rms_mm = rms;
     reg.sample_positions = x;
     reg.sample_residual_mm = c.distance;
     reg.sample_in_view = c.valid;
   } else {
-    const Correspondences c = correspond(surface, y, options.similarity.trim_fraction);
+    const Correspondences& c = similarity_pairs;
     reg.sample_positions = y;
     reg.sample_residual_mm = c.distance;
     reg.sample_in_view = c.valid;

@@ -22,6 +22,9 @@
 ///    with the stiffness lambda lowered stage by stage (the motion-coherence prior of coherent point drift,
 ///    Myronenko and Song 2010, with closest-point correspondences); reference samples outside the target's field
 ///    of view have no pair and follow the smooth field.
+/// The final run stops at the noise floor of its trimmed pairs (SimilarityRegistrationOptions::stall_iterations)
+/// and keeps its lowest-RMS iterate. Every iteration's closest-point searches are bounded by the distance to the
+/// previous iteration's closest points (ClosestPointQuery::query_batch_bounded: same answers, found sooner).
 /// Deterministic at any thread count: closest-point batches keep their order and every reduction is serial
 /// or over fixed blocks.
 
@@ -50,9 +53,17 @@ struct SimilarityRegistrationOptions {
   std::size_t max_samples =
       4000;                 ///< reference vertices used (every k-th when the mesh has more); half as many target ones
   int max_iterations = 80;  ///< Gauss-Newton iterations per start
-  double trim_fraction = 0.1;         ///< share of worst pairs dropped each iteration (missing parts, damage)
-  double point_weight = 0.1;          ///< weight of the point-to-point term beside point-to-plane (stabilises sliding)
-  double tolerance = 1e-7;            ///< stop when the update (rotation rad, log scale, translation / size) is below
+  double trim_fraction = 0.1;  ///< share of worst pairs dropped each iteration (missing parts, damage)
+  double point_weight = 0.1;   ///< weight of the point-to-point term beside point-to-plane (stabilises sliding)
+  double tolerance = 1e-7;     ///< stop when the update (rotation rad, log scale, translation / size) is below
+  /// Also stop when the trimmed RMS has not fallen by a relative stall_tolerance for stall_iterations iterations
+  /// (0: never) in the final run on all samples: trimming flips the kept pairs at the optimum, so the steps hover
+  /// above the tolerance. That run keeps its lowest-RMS iterate.
+  int stall_iterations = 8;
+  /// Starts that are run on all samples after the brief runs (the best by their RMS); the one whose
+  /// reference -> target pairs fit best is kept.
+  std::size_t final_candidates = 1;
+  double stall_tolerance = 1e-4;
   bool principal_axis_starts = true;  ///< also start from the four proper principal-axis alignments
   bool quarter_turn_starts = true;    ///< also start from the 23 other axis-aligned proper rotations
   /// Weight of the target -> reference pairs beside the reference -> target ones (0: one way only).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -99,11 +100,11 @@ std::optional<ClosestPoint> closest_point(const TriMesh& mesh, const Vec3& point
 namespace {
 
 struct QueryState {
-  const EmbreeScene* scene;
-  Vec3 point;      ///< world coordinates, double
-  double margin;   ///< added to the search radius to cover float rounding of bounds and query point
-  double best_d2;  ///< squared distance of the best triangle so far
-  double max_d2;   ///< squared max_distance
+  const Vec3* corners;  ///< 3 per triangle, in triangle order (double, world coordinates)
+  Vec3 point;           ///< world coordinates, double
+  double margin;        ///< added to the search radius to cover float rounding of bounds and query point
+  double best_d2;       ///< squared distance of the best triangle so far
+  double max_d2;        ///< squared max_distance
   Index best_triangle;
   Vec3 best_barycentric;
 };
@@ -111,13 +112,22 @@ struct QueryState {
 bool closest_point_callback(RTCPointQueryFunctionArguments* args) {
   auto* state = static_cast<QueryState*>(args->userPtr);
   const unsigned prim = args->primID;
-  const Tri& tri = state->scene->triangles()[prim];
-  const Vec3& a = state->scene->positions()[tri[0]];
-  const Vec3& b = state->scene->positions()[tri[1]];
-  const Vec3& c = state->scene->positions()[tri[2]];
-  const Vec3 bary = closest_point_on_triangle(state->point, a, b, c);
+  const Vec3* corner = state->corners + 3 * static_cast<std::size_t>(prim);
+  const Vec3& a = corner[0];
+  const Vec3& b = corner[1];
+  const Vec3& c = corner[2];
+  // The distance to the triangle's bounding box is a lower bound of the distance to the triangle: a triangle
+  // whose box lies farther than the best so far (or the limit) cannot win, and skips the exact test. The slack
+  // covers rounding, so no triangle the exact test would keep is skipped.
+  const Vec3& p = state->point;
+  const Vec3 below = a.cwiseMin(b).cwiseMin(c) - p;
+  const Vec3 above = p - a.cwiseMax(b).cwiseMax(c);
+  const double box_d2 = below.cwiseMax(above).cwiseMax(0.0).squaredNorm();
+  const double bound = std::min(state->best_d2, state->max_d2);
+  if (box_d2 > bound * (1.0 + 1e-12) + 1e-300) return false;
+  const Vec3 bary = closest_point_on_triangle(p, a, b, c);
   const Vec3 q = bary[0] * a + bary[1] * b + bary[2] * c;
-  const double d2 = (q - state->point).squaredNorm();
+  const double d2 = (q - p).squaredNorm();
   if (d2 > state->max_d2) return false;
   const Index index = static_cast<Index>(prim);
   if (d2 < state->best_d2 || (d2 == state->best_d2 && index < state->best_triangle)) {
@@ -136,12 +146,17 @@ bool closest_point_callback(RTCPointQueryFunctionArguments* args) {
 }  // namespace
 
 struct ClosestPointQuery::Impl {
-  explicit Impl(const TriMesh& mesh) : scene(mesh, "closest point mesh", false) {}
+  explicit Impl(const TriMesh& mesh) : scene(mesh, "closest point mesh", false) {
+    corners.reserve(3 * scene.triangles().size());
+    for (const Tri& t : scene.triangles()) {
+      for (int k = 0; k < 3; ++k) corners.push_back(scene.positions()[static_cast<std::size_t>(t[k])]);
+    }
+  }
 
   std::optional<ClosestPoint> query(const Vec3& point, double max_distance) const {
     if (scene.empty()) return std::nullopt;
     QueryState state;
-    state.scene = &scene;
+    state.corners = corners.data();
     state.point = point;
     const Vec3 local = point - scene.shift();
     // Float rounding of the stored vertices (relative to the centre) and of the query point.
@@ -175,6 +190,7 @@ struct ClosestPointQuery::Impl {
   }
 
   EmbreeScene scene;
+  std::vector<Vec3> corners;
 };
 
 ClosestPointQuery::ClosestPointQuery(const TriMesh& mesh) : m_impl(std::make_unique<Impl>(mesh)) {}
@@ -202,6 +218,34 @@ std::vector<std::optional<ClosestPoint>> ClosestPointQuery::query_batch(const st
   std::vector<std::optional<ClosestPoint>> results(points.size());
   parallel_for(
       0, points.size(), [&](std::size_t i) { results[i] = m_impl->query(points[i], max_distance); }, 64);
+  return results;
+}
+
+}  // namespace forensim
+
+namespace forensim {
+
+std::vector<std::optional<ClosestPoint>> ClosestPointQuery::query_batch_bounded(
+    const std::vector<Vec3>& points, const std::vector<double>& upper_bounds) const {
+  require_input(
+      upper_bounds.size() == points.size(), "closest point query", "upper_bounds",
+      "has " + std::to_string(upper_bounds.size()) + " entries for " + std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    require_input(points[i].allFinite(), "closest point query", "point " + std::to_string(i),
+                  "query point is not finite");
+    require_input(upper_bounds[i] >= 0.0, "closest point query", "upper bound " + std::to_string(i), "must be >= 0");
+  }
+  const double slack = 1e-9 * m_impl->scene.extent() + 1e-12;
+  std::vector<std::optional<ClosestPoint>> results(points.size());
+  parallel_for(
+      0, points.size(),
+      [&](std::size_t i) {
+        const double bound = upper_bounds[i];
+        // Widened a little: the bound is itself computed in double (a point "on" the mesh is on it to rounding).
+        if (std::isfinite(bound)) results[i] = m_impl->query(points[i], bound * (1.0 + 1e-9) + slack);
+        if (!results[i]) results[i] = m_impl->query(points[i], std::numeric_limits<double>::infinity());
+      },
+      64);
   return results;
 }
 

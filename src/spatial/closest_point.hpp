@@ -53,6 +53,15 @@ class ClosestPointQuery {
   std::vector<std::optional<ClosestPoint>> query_batch(
       const std::vector<Vec3>& points, double max_distance = std::numeric_limits<double>::infinity()) const;
 
+  /// query_batch() with an upper bound on each point's distance to the mesh (#points bounds, mm; for example the
+  /// distance to a point known to lie on the mesh, such as the previous closest point of a point that moved a
+  /// little): each search starts from that radius instead of an unbounded one, so the BVH prunes more from the
+  /// start. The results equal query_batch(points) exactly: a point with nothing within its bound (the bound was
+  /// wrong) is searched again without one. Throws InputError for a size mismatch, a non-finite point or a
+  /// negative or NaN bound (infinity is allowed: no bound).
+  std::vector<std::optional<ClosestPoint>> query_batch_bounded(const std::vector<Vec3>& points,
+                                                               const std::vector<double>& upper_bounds) const;
+
   std::size_t triangle_count() const;
 
  private:

@@ -134,3 +134,45 @@ TEST(ClosestPointQuery, FreeFunctionMatchesQuery) {
     }
   }
 }
+
+TEST(ClosestPointQuery, BoundedBatchEqualsUnbounded) {
+  // Bounds from a point on the mesh (as the previous closest point of a point that moved), loose bounds, wrong
+  // (too small) bounds and no bound: every answer equals the unbounded one bit for bit.
+  const TriMesh mesh = make_box_mesh(Vec3(-1, -0.5, -1.5), Vec3(1.5, 1, 0.5), 4);
+  const ClosestPointQuery query(mesh);
+  RandomStream rng(36, 0);
+  std::vector<Vec3> points;
+  std::vector<double> bounds;
+  for (int i = 0; i < 800; ++i) {
+    const double spread = (i % 4 == 0) ? 20.0 : 2.5;
+    const Vec3 p(rng.uniform(-spread, spread), rng.uniform(-spread, spread), rng.uniform(-spread, spread));
+    points.push_back(p);
+    const Vec3& on_mesh = mesh.positions[static_cast<std::size_t>(i) % mesh.positions.size()];
+    const double d = brute_force(mesh, p).distance;
+    switch (i % 4) {
+      case 0:
+        bounds.push_back((p - on_mesh).norm());
+        break;
+      case 1:
+        bounds.push_back(3.0 * d + 1.0);
+        break;
+      case 2:
+        bounds.push_back(0.5 * d);  // wrong: searched again without a bound
+        break;
+      default:
+        bounds.push_back(std::numeric_limits<double>::infinity());
+    }
+  }
+  const auto plain = query.query_batch(points);
+  const auto bounded = query.query_batch_bounded(points, bounds);
+  ASSERT_EQ(bounded.size(), plain.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_TRUE(bounded[i]) << "point " << i;
+    EXPECT_EQ(bounded[i]->triangle, plain[i]->triangle) << "point " << i;
+    EXPECT_EQ(bounded[i]->distance, plain[i]->distance) << "point " << i;
+    EXPECT_EQ(bounded[i]->point, plain[i]->point) << "point " << i;
+  }
+  EXPECT_THROW((void)query.query_batch_bounded(points, std::vector<double>(3, 1.0)), InputError);
+  bounds[5] = -1.0;
+  EXPECT_THROW((void)query.query_batch_bounded(points, bounds), InputError);
+}
