@@ -60,12 +60,16 @@ LandmarkDepths fit_input(const TemplateHead& head, const DepthVectors& vectors, 
   return given;
 }
 
+constexpr double kMaxOutwardMoveMm = 12.0;
+
 /// Depth vectors whose skull normal points against the template's there (a landmark on an inner surface: the
 /// palatal side of the alveolar arch, where the outward normal points into the mouth and the skin target would
 /// lie inside the head) are moved to where the ray along the template's direction leaves the bone, with that
 /// surface's patch normal: the paper's vector is the outward surface normal (section 3). The template's
 /// directions are mapped by the least-squares affine map of the bone landmarks of `reference` (normals by its
-/// inverse transpose); nothing changes with fewer than 4 of them or a singular map. Returns how many moved.
+/// inverse transpose); nothing changes with fewer than 4 of them or a singular map. The bone crossed is at most
+/// kMaxOutwardMoveMm thick (the alveolar process with an incisor root): a longer way out runs along a tooth or
+/// through the skull, and the landmark stays. Returns how many moved.
 std::size_t outward_depth_vectors(const TemplateHead& head, const SkullSurface& surface, const DepthVectors& reference,
                                   DepthVectors& vectors, const DepthVectorOptions& options) {
   std::vector<Vec3> from, to;
@@ -98,6 +102,7 @@ std::size_t outward_depth_vectors(const TemplateHead& head, const SkullSurface& 
     for (int k = 0; k < 16; ++k) {
       const auto hit = rays->intersect(v.bone_mm, expected, t_min, 40.0);
       if (!hit) break;
+      if (hit->t > kMaxOutwardMoveMm) break;
       if (hit->normal.dot(expected) > 0.0) {
         const Vec3 direction = surface.landmark_direction(hit->point, options.patch_radius_mm);
         if (direction.dot(expected) > 0.0) {
