@@ -108,11 +108,12 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
     guides_record = doc.resolved()["guides"];
   }
 
-  const nlohmann::json facts = run_reconstruction(job, a.out, doc.resolved(), guides_record);
-  std::printf("wrote %s (%d landmark pairs + %d interpolated; skull/skin violations %d -> %d; %s)\n", a.out.c_str(),
-              facts["given_pairs"].get<int>(), facts["interpolated_pairs"].get<int>(),
-              facts["violations_before"].get<int>(), facts["violations_after"].get<int>(),
-              format_seconds(facts["seconds_total"].get<double>()).c_str());
+  const nlohmann::json facts =
+      run_reconstruction(job, a.out, reconstruct_job_record(job, doc.resolved()), guides_record);
+  std::printf("wrote %s (%d landmark pairs + %d interpolated + %d correction; skull/skin violations %d -> %d; %s)\n",
+              a.out.c_str(), facts["given_pairs"].get<int>(), facts["interpolated_pairs"].get<int>(),
+              facts["correction_pairs"].get<int>(), facts["violations_before"].get<int>(),
+              facts["violations_after"].get<int>(), format_seconds(facts["seconds_total"].get<double>()).c_str());
   if (facts.contains("evaluation_rms_mm")) {
     std::printf(
         "evaluation against the real face: mean %.2f mm, RMS %.2f mm, signed mean %+.2f mm, %.1f %% within "
@@ -558,7 +559,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   timings.add("write", watch.lap());
   for (const auto& [stage, seconds] : timings.stages()) run.timings().add(stage, seconds);
   run.facts()["given_pairs"] = fit.given_pair_count;
-  run.facts()["interpolated_pairs"] = fit.targets.size() - fit.given_pair_count;
+  run.facts()["interpolated_pairs"] = fit.interpolated.names.size();
+  run.facts()["correction_pairs"] = fit.corrections.sources.size();
   run.facts()["violations_before"] = result.violations_given_only.total();
   run.facts()["violations_after"] = result.violations_final.total();
   run.facts()["expressions"] = expression_targets.size();

@@ -86,4 +86,36 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   return j;
 }
 
+nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved) {
+  resolved["version"] = 1;
+  resolved["skull"] = job.skull;
+  resolved["ct"] = job.ct;
+  resolved["unit"] = job.unit;
+  resolved["mesh_scale"] = job.mesh_scale;
+  if (job.bone_iso) resolved["bone_iso"] = *job.bone_iso;
+  resolved["landmarks"] = job.landmarks;
+  resolved["table"] = job.table;
+  resolved["sex"] = job.sex;
+  resolved["population"] = job.population;
+  resolved["build"] = job.build;
+  resolved["build_sd"] = job.build_sd;
+  resolved["interpolated_landmarks"] = job.interpolated_landmarks;
+  resolved["evaluate"] = job.evaluate;
+  resolved["measure_guides"] = job.measure_guides;
+  resolved["template_detail"] = job.template_detail;
+  resolved["axes"] = job.axes;
+  resolved["seed"] = job.seed;
+  resolved["texture_size"] = job.texture_size;
+  resolved["picture_size"] = job.picture_size;
+  resolved["samples"] = job.samples;
+  if (job.uncertainty_samples > 0) {
+    resolved["uncertainty"]["samples"] = job.uncertainty_samples;
+    if (job.uncertainty_seed) resolved["uncertainty"]["seed"] = *job.uncertainty_seed;
+  } else {
+    resolved.erase("uncertainty");
+  }
+  resolved["expressions"] = job.expressions;
+  return resolved;
+}
+
 }  // namespace forensim::cli

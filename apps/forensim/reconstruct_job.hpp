@@ -80,6 +80,12 @@ struct ReconstructJob {
 ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
                                     const std::filesystem::path& base);
 
+/// The job as it runs, for run.json: `resolved` (the job file's values as read, defaults included) with every
+/// key replaced by `job`'s final value, so options and flags typed on the command line (--evaluate,
+/// --measure-guides, --no-interpolated, --expressions, ...) are recorded and the record read back by
+/// read_reconstruct_job gives the same job. The guides stay as read (provenance.json records a --guides file).
+nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved);
+
 /// Runs a reconstruction (what `forensim reconstruct` does after reading its job) into the run folder `out`:
 /// every input is read and checked and the head computed before the folder is created. `resolved_job` is
 /// stored in run.json, `guides_record` (the guides as given, or null) in provenance.json. Returns the run's

@@ -84,7 +84,8 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
     m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
   }
   m_points = std::move(points);
-  factor(target_interpolation());
+  factor(target_interpolation(), options.count_violations && options.correction.rounds <= 0);
+  if (options.correction.rounds > 0) correct_violations();
   m_result.seconds_total = total.seconds();
 }
 
@@ -101,7 +102,7 @@ std::vector<std::string> TemplateFit::kept_interpolated_names(const Interpolated
   return kept;
 }
 
-void TemplateFit::factor(const InterpolatedLandmarks& s) {
+void TemplateFit::factor(const InterpolatedLandmarks& s, bool count_violations) {
   // The pair set: the given pairs, then every template interpolated point also found on the target.
   const std::size_t given = m_result.given_pair_count;
   m_result.pair_names.resize(given);
@@ -125,6 +126,13 @@ void TemplateFit::factor(const InterpolatedLandmarks& s) {
     m_result.sources.push_back(m_template_interpolated_skin[i]);
     m_result.targets.push_back(s.skull[k] + s.depth_mm[k] * s.normals[k]);
   }
+  update_correction_depths();
+  const std::vector<Vec3> correction_targets = m_result.corrections.targets();
+  for (std::size_t j = 0; j < correction_targets.size(); ++j) {
+    m_result.pair_names.push_back("correction_" + std::to_string(j));
+    m_result.sources.push_back(m_result.corrections.sources[j]);
+    m_result.targets.push_back(correction_targets[j]);
+  }
   Stopwatch setup;
   m_warp = std::make_unique<RbfWarp>(m_result.sources, m_result.targets, "landmark pairs");
   m_point_warp = std::make_unique<RbfPointWarp>(*m_warp, m_points);
@@ -132,7 +140,45 @@ void TemplateFit::factor(const InterpolatedLandmarks& s) {
   m_warped = m_point_warp->warp(m_result.targets);
   apply_positions();
   m_result.max_landmark_residual_mm = m_warp->max_landmark_residual();
-  if (m_options.count_violations) recount_violations();
+  if (count_violations) recount_violations();
+}
+
+void TemplateFit::update_correction_depths() {
+  ViolationCorrectionPairs& c = m_result.corrections;
+  for (std::size_t j = 0; j < c.depth_mm.size(); ++j)
+    c.depth_mm[j] = correction_depth(c.neighbours[j], m_given.depth_vectors);
+}
+
+std::size_t TemplateFit::correct_violations() {
+  const ViolationCorrectionOptions& o = m_options.correction;
+  SkullSkinViolations v = count_skull_skin_violations(m_skull, m_result.skin);
+  m_result.violations_before_correction = v;
+  std::size_t added = 0;
+  ViolationCorrectionOptions spaced = o;
+  for (int round = 0; round < o.rounds && v.total() > 0; ++round) {
+    ViolationCorrectionPairs more;
+    for (;;) {
+      more = violation_correction_pairs(m_skull, m_head.skin, m_result.skin, v, m_given.skull, m_given.depth_vectors,
+                                        m_result.sources, m_result.targets, spaced);
+      if (!more.sources.empty() || 0.5 * spaced.spacing_mm < o.min_spacing_mm) break;
+      spaced.spacing_mm *= 0.5;
+    }
+    if (more.sources.empty()) break;
+    ViolationCorrectionPairs& c = m_result.corrections;
+    c.sources.insert(c.sources.end(), more.sources.begin(), more.sources.end());
+    c.skull.insert(c.skull.end(), more.skull.begin(), more.skull.end());
+    c.normals.insert(c.normals.end(), more.normals.begin(), more.normals.end());
+    c.neighbours.insert(c.neighbours.end(), more.neighbours.begin(), more.neighbours.end());
+    c.depth_mm.insert(c.depth_mm.end(), more.depth_mm.begin(), more.depth_mm.end());
+    added += more.sources.size();
+    ++m_result.correction_rounds;
+    // factor() rebuilds the interpolated record from its argument: pass a copy.
+    const InterpolatedLandmarks kept = m_result.interpolated;
+    factor(kept, false);
+    v = count_skull_skin_violations(m_skull, m_result.skin);
+  }
+  m_result.violations = v;
+  return added;
 }
 
 TemplateFit::~TemplateFit() = default;
@@ -218,10 +264,7 @@ std::size_t TemplateFit::retarget(int regenerate) {
   if (kept_interpolated_names(s) != m_interpolated_names) {
     // An interpolated point appeared or vanished: a new landmark set, factored anew from the whole set.
     if (regenerate != (k_cranium | k_mandible)) s = target_interpolation();
-    const bool count = m_options.count_violations;
-    m_options.count_violations = false;
-    factor(s);
-    m_options.count_violations = count;
+    factor(s, false);
     return m_result.targets.size();
   }
   return retarget_with(s);
@@ -243,6 +286,10 @@ std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
       targets[given + j] = s.skull[k] + s.depth_mm[k] * s.normals[k];
     }
   }
+  update_correction_depths();
+  const std::vector<Vec3> correction_targets = m_result.corrections.targets();
+  const std::size_t first_correction = given + m_interpolated_names.size();
+  for (std::size_t j = 0; j < correction_targets.size(); ++j) targets[first_correction + j] = correction_targets[j];
   std::vector<std::size_t> changed;
   for (std::size_t j = 0; j < targets.size(); ++j) {
     if (targets[j] != m_result.targets[j]) changed.push_back(j);

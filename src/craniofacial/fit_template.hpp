@@ -5,7 +5,9 @@
 /// muscle layout grids (the mesh's topology, UVs and textures are kept: only positions move), then the muscle
 /// shapes are recomputed under the warped skin. Interpolated landmark pairs on the cranium and mandible
 /// (interpolated_landmarks.hpp, Figure 6b) are added to the given ones, and the skull/skin violations are
-/// reported for the warp with the given pairs only and for the final one.
+/// reported for the warp with the given pairs only and for the final one. Where the skull still pierces the
+/// skin (or the skin enters the skull) after them, correction pairs are added at the violations and the warp
+/// solved again, round after round until none remain (violation_correction.hpp).
 ///
 /// TemplateFit keeps the factorised warp and the cardinal functions of the template's points, so moving one
 /// landmark (the interactive case) re-targets the warp and moves the head in O(#points) per changed pair.
@@ -18,6 +20,7 @@
 #include "craniofacial/muscle_layout.hpp"
 #include "craniofacial/skull_skin_violations.hpp"
 #include "craniofacial/template_head.hpp"
+#include "craniofacial/violation_correction.hpp"
 #include "geometry/tri_mesh.hpp"
 
 namespace forensim {
@@ -31,6 +34,9 @@ struct FitTemplateOptions {
   LandmarkInterpolationOptions interpolation;
   bool muscles = true;           ///< warp the muscle grids and reshape them under the skin
   bool count_violations = true;  ///< skull/skin violations before and after interpolated landmarks
+  /// Correction pairs at the violations left by the warp (rounds 0: none). Needs no counting option: the
+  /// rounds count the violations themselves.
+  ViolationCorrectionOptions correction;
 };
 
 struct TemplateFitResult {
@@ -38,12 +44,18 @@ struct TemplateFitResult {
   std::vector<MuscleLayout> muscle_layouts;          ///< warped layout grids
   std::vector<MuscleShape> muscles;                  ///< shaped under the warped skin
   std::vector<TemplateSkinLandmark> skin_landmarks;  ///< the template's skin-only landmarks, warped
-  /// Landmark pairs of the warp: the given ones (their template skin names) first, then the interpolated ones.
+  /// Landmark pairs of the warp: the given ones (their template skin names) first, then the interpolated ones,
+  /// then the correction pairs ("correction_<k>").
   std::vector<std::string> pair_names;
   std::vector<Vec3> sources;  ///< template skin points p_i
   std::vector<Vec3> targets;  ///< q_i = s_i + d_i on the target
   std::size_t given_pair_count = 0;
-  InterpolatedLandmarks interpolated;         ///< on the target skull (only those also found on the template's)
+  InterpolatedLandmarks interpolated;    ///< on the target skull (only those also found on the template's)
+  ViolationCorrectionPairs corrections;  ///< the correction pairs, in the order added
+  int correction_rounds = 0;             ///< rounds that added pairs
+  /// After the given and interpolated pairs, before any correction (counted when corrections ran or
+  /// count_violations is set).
+  SkullSkinViolations violations_before_correction;
   SkullSkinViolations violations_given_only;  ///< after the warp with the given pairs only
   SkullSkinViolations violations;             ///< after the final warp
   double max_landmark_residual_mm = 0.0;      ///< max |f(p_i) - q_i| of the final warp
@@ -70,7 +82,9 @@ class TemplateFit {
   /// fit with the moved landmark. While the pair set stays the same the factorisation and the cardinal functions
   /// are reused (O(#points) per changed target); when an interpolated point appears or vanishes on the target
   /// the new pair set is factored anew. Violations are not recounted (call recount_violations()). Returns the
-  /// number of warp targets that changed (all of them after a new factorisation).
+  /// number of warp targets that changed (all of them after a new factorisation). The correction pairs are kept,
+  /// their depths re-read from their neighbouring landmarks (call correct_violations() for violations the move
+  /// made: "the same result as a fresh fit" holds for the same pair set).
   std::size_t move_landmark(const std::string& name, const Vec3& skull_position, const Vec3& depth_vector);
   /// All given landmarks at once (the constructor's order and names; e.g. new tissue depths): as
   /// move_landmark, one re-targeting of the warp. Throws InputError for sizes that differ from the fit's
@@ -78,14 +92,21 @@ class TemplateFit {
   std::size_t set_landmarks(const std::vector<Vec3>& skull_positions, const std::vector<Vec3>& depth_vectors);
   /// Recounts result().violations for the current skin.
   void recount_violations();
+  /// Runs the correction rounds again for the current landmarks (options.correction; the constructor runs them
+  /// once): the pairs found so far are kept, new ones are added where violations remain. Updates
+  /// result().violations. Returns the number of pairs added.
+  std::size_t correct_violations();
 
  private:
   /// The interpolated points on the target for the current given landmarks (none without interpolation).
   InterpolatedLandmarks target_interpolation() const;
   /// The template's interpolated points that `s` also holds, in the template's order.
   std::vector<std::string> kept_interpolated_names(const InterpolatedLandmarks& s) const;
-  /// Builds the pair set from the given landmarks and `s`, factors the warp and warps every point.
-  void factor(const InterpolatedLandmarks& s);
+  /// Builds the pair set from the given landmarks, `s` and the correction pairs, factors the warp and warps
+  /// every point.
+  void factor(const InterpolatedLandmarks& s, bool count_violations);
+  /// Targets of the correction pairs from the current given depth vectors.
+  void update_correction_depths();
   void apply_positions();
   /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
   /// `regenerate` (k_cranium, k_mandible or both): the interpolated generators run again on the target; the

@@ -1,11 +1,14 @@
 #include "craniofacial/reconstruction.hpp"
 
+#include <Eigen/QR>
 #include <cmath>
+#include <memory>
 
 #include "core/error.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
 #include "craniofacial/rbf_warp.hpp"
 #include "geometry/mesh_measures.hpp"
+#include "spatial/ray_caster.hpp"
 
 namespace forensim {
 namespace {
@@ -57,6 +60,65 @@ LandmarkDepths fit_input(const TemplateHead& head, const DepthVectors& vectors, 
   return given;
 }
 
+constexpr double kMaxOutwardMoveMm = 12.0;
+
+/// Depth vectors whose skull normal points against the template's there (a landmark on an inner surface: the
+/// palatal side of the alveolar arch, where the outward normal points into the mouth and the skin target would
+/// lie inside the head) are moved to where the ray along the template's direction leaves the bone, with that
+/// surface's patch normal: the paper's vector is the outward surface normal (section 3). The template's
+/// directions are mapped by the least-squares affine map of the bone landmarks of `reference` (normals by its
+/// inverse transpose); nothing changes with fewer than 4 of them or a singular map. The bone crossed is at most
+/// kMaxOutwardMoveMm thick (the alveolar process with an incisor root): a longer way out runs along a tooth or
+/// through the skull, and the landmark stays. Returns how many moved.
+std::size_t outward_depth_vectors(const TemplateHead& head, const SkullSurface& surface, const DepthVectors& reference,
+                                  DepthVectors& vectors, const DepthVectorOptions& options) {
+  std::vector<Vec3> from, to;
+  for (const DepthVector& v : reference.vectors) {
+    const int j = find_template_landmark(head, v.skin_landmark);
+    if (j < 0) continue;
+    from.push_back(head.landmarks[static_cast<std::size_t>(j)].skull);
+    to.push_back(v.bone_mm);
+  }
+  if (from.size() < 4) return 0;
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(from.size()), 4), y(static_cast<Eigen::Index>(from.size()), 3);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    m.row(r) << from[i].x(), from[i].y(), from[i].z(), 1.0;
+    y.row(r) = to[i].transpose();
+  }
+  const Eigen::MatrixXd solution = m.colPivHouseholderQr().solve(y);  // 4 x 3: [A^T; t^T]
+  const Mat3 a = solution.topRows(3).transpose();
+  if (!std::isfinite(a.sum()) || std::abs(a.determinant()) < 1e-6) return 0;
+  const Mat3 normal_map = a.inverse().transpose();
+  std::unique_ptr<RayCaster> rays;
+  std::size_t moved = 0;
+  for (DepthVector& v : vectors.vectors) {
+    const int j = find_template_landmark(head, v.skin_landmark);
+    if (j < 0) continue;
+    const Vec3 expected = (normal_map * head.landmarks[static_cast<std::size_t>(j)].skull_normal).normalized();
+    if (!std::isfinite(expected.sum()) || v.direction.dot(expected) >= 0.0) continue;
+    if (!rays) rays = std::make_unique<RayCaster>(surface.mesh());
+    double t_min = 1e-3;
+    for (int k = 0; k < 16; ++k) {
+      const auto hit = rays->intersect(v.bone_mm, expected, t_min, 40.0);
+      if (!hit) break;
+      if (hit->t > kMaxOutwardMoveMm) break;
+      if (hit->normal.dot(expected) > 0.0) {
+        const Vec3 direction = surface.landmark_direction(hit->point, options.patch_radius_mm);
+        if (direction.dot(expected) > 0.0) {
+          v.bone_mm = hit->point;
+          v.direction = direction;
+          v.skin_mm = v.bone_mm + v.depth_mm * v.direction;
+          ++moved;
+        }
+        break;
+      }
+      t_min = hit->t + 1e-6;
+    }
+  }
+  return moved;
+}
+
 }  // namespace
 
 Reconstruction::Reconstruction(const TemplateHead& head, const TriMesh& skull, const LandmarkSet& skull_landmarks,
@@ -64,6 +126,8 @@ Reconstruction::Reconstruction(const TemplateHead& head, const TriMesh& skull, c
     : m_head(head), m_depths(depths), m_options(options), m_surface(skull) {
   m_result.skull_landmarks = canonical_set(skull_landmarks);
   m_result.depth_vectors = depth_vectors(m_surface, m_result.skull_landmarks, m_depths, m_options.depth);
+  const DepthVectors as_placed = m_result.depth_vectors;
+  outward_depth_vectors(head, m_surface, as_placed, m_result.depth_vectors, m_options.depth);
   const LandmarkDepths given = fit_input(head, m_result.depth_vectors, m_result.used_in_warp, m_result.not_on_template);
   FitTemplateOptions fit_options = m_options.fit;
   fit_options.count_violations = false;  // counted here, after the guides
@@ -123,7 +187,8 @@ std::size_t Reconstruction::move_landmark(const std::string& name, const Vec3& p
   require_input(std::isfinite(position_mm.sum()), "moved landmark", canonical, "position must be finite");
   LandmarkSet one("moved landmark");
   one.add({canonical, position_mm, LandmarkSource::edited, 1.0});
-  const DepthVectors moved = depth_vectors(m_surface, one, m_depths, m_options.depth);
+  DepthVectors moved = depth_vectors(m_surface, one, m_depths, m_options.depth);
+  outward_depth_vectors(m_head, m_surface, m_result.depth_vectors, moved, m_options.depth);
   m_result.skull_landmarks.set(one[0]);
   if (moved.vectors.empty()) return 0;  // no skin pair or no depth: nothing of the head depends on it
   const DepthVector& v = moved.vectors.front();
@@ -133,6 +198,8 @@ std::size_t Reconstruction::move_landmark(const std::string& name, const Vec3& p
   if (i == vectors.vectors.size()) {
     // A landmark the set did not hold: a new landmark set, fitted anew.
     vectors = depth_vectors(m_surface, m_result.skull_landmarks, m_depths, m_options.depth);
+    const DepthVectors as_placed = vectors;
+    outward_depth_vectors(m_head, m_surface, as_placed, vectors, m_options.depth);
     const LandmarkDepths given = fit_input(m_head, vectors, m_result.used_in_warp, m_result.not_on_template);
     FitTemplateOptions fit_options = m_options.fit;
     fit_options.count_violations = false;
@@ -149,6 +216,10 @@ std::size_t Reconstruction::move_landmark(const std::string& name, const Vec3& p
 
 std::size_t Reconstruction::set_depths(const TissueDepths& depths) {
   DepthVectors vectors = depth_vectors(m_surface, m_result.skull_landmarks, depths, m_options.depth);
+  {
+    const DepthVectors as_placed = vectors;
+    outward_depth_vectors(m_head, m_surface, as_placed, vectors, m_options.depth);
+  }
   const DepthVectors& old = m_result.depth_vectors;
   bool same_landmarks = vectors.vectors.size() == old.vectors.size();
   for (std::size_t i = 0; same_landmarks && i < old.vectors.size(); ++i) {
@@ -223,7 +294,8 @@ nlohmann::json Reconstruction::provenance() const {
                       {"unpaired", vectors.unpaired},
                       {"not_on_template", m_result.not_on_template},
                       {"given_pairs", fit.given_pair_count},
-                      {"interpolated_pairs", fit.targets.size() - fit.given_pair_count},
+                      {"interpolated_pairs", fit.interpolated.names.size()},
+                      {"correction_pairs", fit.corrections.sources.size()},
                       {"max_landmark_residual_mm", fit.max_landmark_residual_mm}};
   out["depths"] = {{"table", m_depths.table},
                    {"group", m_depths.group.describe()},
@@ -243,6 +315,14 @@ nlohmann::json Reconstruction::violations_json() const {
   nlohmann::json out = {{"given_pairs_only", violation_record(m_result.violations_given_only)},
                         {"with_interpolated_landmarks", violation_record(m_result.violations_interpolated)}};
   if (m_options.guides) out["after_guides"] = violation_record(m_result.violations_final);
+  const TemplateFitResult& fit = m_fit->result();
+  if (m_options.fit.correction.rounds > 0) {
+    // The interpolated pairs' own result, and what the correction pairs at the remaining violations added.
+    out["before_correction"] = violation_record(fit.violations_before_correction);
+    out["correction"] = {{"pairs", fit.corrections.sources.size()},
+                         {"rounds", fit.correction_rounds},
+                         {"depth", "smallest tissue depth among the 3 nearest given landmarks"}};
+  }
   out["current"] = m_result.violations_current;
   return out;
 }

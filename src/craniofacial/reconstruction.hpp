@@ -116,7 +116,9 @@ class Reconstruction {
   nlohmann::json provenance() const;
   /// The violation counts as JSON: given_pairs_only, with_interpolated_landmarks, after_guides (with guides),
   /// each {skull_vertices, skin_vertices, skull_outside_skin, skin_inside_skull, max_skull_protrusion_mm,
-  /// max_skin_intrusion_mm}; "current": false when they predate the last update.
+  /// max_skin_intrusion_mm}; with correction rounds also before_correction (the same record, after the
+  /// interpolated pairs alone, from the fit) and correction {pairs, rounds, depth}; "current": false when they
+  /// predate the last update.
   nlohmann::json violations_json() const;
 
  private:

@@ -4,11 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 #include "core/error.hpp"
+#include "core/job.hpp"
+#include "forensim/reconstruct_job.hpp"
 #include "support/test_support.hpp"
 
 using namespace forensim;
@@ -159,4 +165,38 @@ TEST(ReconstructCli, EvaluateRefusesASkullWithoutAFace) {
   EXPECT_EQ(m.exit_code, code(ErrorKind::input)) << m.output;
   EXPECT_NE(m.output.find("skull.obj"), std::string::npos) << m.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "run2"));
+}
+
+TEST(ReconstructCli, RunRecordHoldsTheFlagsAndReadsBackToTheSameJob) {
+  // A job file that says "evaluate": false, run with --evaluate --measure-guides --no-interpolated and a few
+  // options typed: run.json must record what ran.
+  JobDocument file = JobDocument::parse(
+      R"({"version": 1, "evaluate": false, "measure_guides": false, "table": "rhine_1983", "seed": 3})", "job.json");
+  cli::ReconstructJob job = cli::read_reconstruct_job(file.root(), cli::ReconstructJob{}, "");
+  EXPECT_FALSE(job.evaluate);
+  job.evaluate = true;
+  job.measure_guides = true;
+  job.interpolated_landmarks = false;
+  job.ct = "scan.nhdr";
+  job.seed = 9;
+  job.expressions = {"smile"};
+  job.uncertainty_samples = 8;
+  const nlohmann::json record = cli::reconstruct_job_record(job, file.resolved());
+  EXPECT_TRUE(record["evaluate"].get<bool>());
+  EXPECT_TRUE(record["measure_guides"].get<bool>());
+  EXPECT_FALSE(record["interpolated_landmarks"].get<bool>());
+  EXPECT_EQ(record["table"], "rhine_1983");
+  EXPECT_EQ(record["seed"].get<int>(), 9);
+  // The record is a valid job that reads back to the job that ran, every key used.
+  JobDocument again = JobDocument::parse(record.dump(), "run.json job");
+  const cli::ReconstructJob back = cli::read_reconstruct_job(again.root(), cli::ReconstructJob{}, "");
+  EXPECT_NO_THROW(again.check_all_used());
+  EXPECT_TRUE(back.evaluate);
+  EXPECT_TRUE(back.measure_guides);
+  EXPECT_FALSE(back.interpolated_landmarks);
+  EXPECT_EQ(back.ct, "scan.nhdr");
+  EXPECT_EQ(back.table, "rhine_1983");
+  EXPECT_EQ(back.seed, 9u);
+  EXPECT_EQ(back.expressions, std::vector<std::string>{"smile"});
+  EXPECT_EQ(back.uncertainty_samples, 8);
 }

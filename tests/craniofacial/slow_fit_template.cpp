@@ -61,10 +61,13 @@ TEST(SlowFitTemplate, InterpolatedLandmarksRemoveSkullSkinViolations) {
             << " given pairs: " << fit.violations_given_only.skull_outside_skin
             << " skull vertices outside the skin (max " << fit.violations_given_only.max_skull_protrusion_mm << " mm), "
             << fit.violations_given_only.skin_inside_skull << " skin vertices inside the skull; with "
-            << fit.targets.size() - fit.given_pair_count << " interpolated pairs: " << fit.violations.skull_outside_skin
-            << " (max " << fit.violations.max_skull_protrusion_mm << " mm), " << fit.violations.skin_inside_skull
-            << "; fit " << fit.seconds_total << " s\n";
+            << fit.interpolated.names.size() << " interpolated pairs: " << fit.violations.skull_outside_skin << " (max "
+            << fit.violations.max_skull_protrusion_mm << " mm), " << fit.violations.skin_inside_skull << "; fit "
+            << fit.seconds_total << " s\n";
   EXPECT_GT(fit.violations_given_only.total(), 0u);
+  // The interpolated pairs alone remove them here (no correction pair needed), and the final fit has none.
+  EXPECT_EQ(fit.violations_before_correction.total(), 0u);
+  EXPECT_TRUE(fit.corrections.sources.empty());
   EXPECT_EQ(fit.violations.total(), 0u);
   EXPECT_LT(fit.max_landmark_residual_mm, 1e-9 * 250.0);
 }

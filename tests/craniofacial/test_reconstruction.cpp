@@ -26,6 +26,9 @@ const TissueDepths& table_depths() {
 ReconstructionOptions quick_options() {
   ReconstructionOptions o;
   o.fit.count_violations = false;
+  // Updates keep the pair set; a fresh fit would look for correction pairs anew (test_violation_correction.cpp
+  // checks that updates keep the corrections' targets).
+  o.fit.correction.rounds = 0;
   return o;
 }
 
