@@ -162,7 +162,9 @@ TEST_F(SkullApi, MovedLandmarkChangesTheFaceAsAFreshSessionFromTheExportedLandma
   std::ofstream(served / "edited.mrk.json") << mrk->body;
   const auto b = ok(post(c, "/api/skull/sessions", quick_session("edited.mrk.json")), 201);
   ASSERT_TRUE(b.is_object());
-  EXPECT_LT(largest_difference(after, floats(b["face"]["positions_f32"])), 1e-3);
+  // Within 0.01 mm (the edit moved the face by more than 0.5 mm): the edited session re-targets its factored warp
+  // and its skull/skin correction pairs, the fresh one fits them anew.
+  EXPECT_LT(largest_difference(after, floats(b["face"]["positions_f32"])), 1e-2);
 
   // Without g, then g added back where it was moved to: the same face again.
   LandmarkSet without = exported;
@@ -176,7 +178,7 @@ TEST_F(SkullApi, MovedLandmarkChangesTheFaceAsAFreshSessionFromTheExportedLandma
   const auto added = ok(post(c, session_path(d, "/landmarks"), {{"name", "g"}, {"position", to}}));
   EXPECT_TRUE(added["added"].get<bool>());
   EXPECT_EQ(added["landmarks"].size(), a["landmarks"].size());
-  EXPECT_LT(largest_difference(after, floats(added["face"]["positions_f32"])), 1e-3);
+  EXPECT_LT(largest_difference(after, floats(added["face"]["positions_f32"])), 1e-2);
   // A landmark without a skin pair (porion) is kept for the export and leaves the face alone.
   const auto porion = ok(post(c, session_path(d, "/landmarks"), {{"name", "po_L"}, {"position", g["skull_mm"]}}));
   EXPECT_TRUE(porion["added"].get<bool>());
