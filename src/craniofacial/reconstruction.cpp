@@ -133,7 +133,7 @@ Reconstruction::Reconstruction(const TemplateHead& head, const TriMesh& skull, c
   fit_options.count_violations = false;  // counted here, after the guides
   m_fit = std::make_unique<TemplateFit>(head, m_surface.mesh(), given, fit_options);
   apply_guides();
-  if (m_options.fit.count_violations) recount_violations();
+  if (m_options.fit.count_violations) count_violations(fit_options.correction.rounds > 0);
 }
 
 Reconstruction::~Reconstruction() = default;
@@ -254,6 +254,10 @@ void Reconstruction::set_guides(const std::optional<FaceGuides>& guides) {
 }
 
 void Reconstruction::recount_violations() {
+  count_violations(false);
+}
+
+void Reconstruction::count_violations(bool fit_counted) {
   const TemplateFitResult& fit = m_fit->result();
   const TriMesh& skull = m_surface.mesh();
   // The warp with the given pairs only (Figure 6a), on the template's skin.
@@ -264,7 +268,7 @@ void Reconstruction::recount_violations() {
   given_skin.positions = RbfWarp(sources, targets, "skull landmarks").evaluate_batch(m_head.skin.positions);
   compute_normals(given_skin);
   m_result.violations_given_only = count_skull_skin_violations(skull, given_skin);
-  m_result.violations_interpolated = count_skull_skin_violations(skull, fit.skin);
+  m_result.violations_interpolated = fit_counted ? fit.violations : count_skull_skin_violations(skull, fit.skin);
   m_result.violations_final =
       m_options.guides ? count_skull_skin_violations(skull, m_result.skin) : m_result.violations_interpolated;
   m_result.violations_current = true;

@@ -123,6 +123,9 @@ class Reconstruction {
 
  private:
   void apply_guides();
+  /// recount_violations(), taking the fit's own count of its skin when `fit_counted` (the fit's correction
+  /// rounds end by counting it, so a fresh fit need not be counted twice).
+  void count_violations(bool fit_counted);
   void assemble();
 
   const TemplateHead& m_head;
