@@ -11,7 +11,8 @@ void FieldSet::validate(std::size_t count, const std::string& source, const std:
     require_input(values.size() == count, source, "field '" + name + "'",
                   "has " + std::to_string(values.size()) + " values for " + std::to_string(count) + " " + element_kind);
     for (std::size_t i = 0; i < values.size(); ++i) {
-      require_input(!std::isnan(values[i]), source, "field '" + name + "'", "value " + std::to_string(i) + " is NaN");
+      if (std::isnan(values[i]))
+        throw InputError(source, "field '" + name + "'", "value " + std::to_string(i) + " is NaN");
     }
   }
   for (const auto& [name, values] : vectors) {
@@ -19,7 +20,8 @@ void FieldSet::validate(std::size_t count, const std::string& source, const std:
         values.size() == count, source, "field '" + name + "'",
         "has " + std::to_string(values.size()) + " vectors for " + std::to_string(count) + " " + element_kind);
     for (std::size_t i = 0; i < values.size(); ++i) {
-      require_input(!values[i].hasNaN(), source, "field '" + name + "'", "vector " + std::to_string(i) + " has NaN");
+      if (values[i].hasNaN())
+        throw InputError(source, "field '" + name + "'", "vector " + std::to_string(i) + " has NaN");
     }
   }
 }

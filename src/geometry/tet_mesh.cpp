@@ -6,7 +6,7 @@ namespace forensim {
 
 void TetMesh::validate(const std::string& source) const {
   for (std::size_t v = 0; v < positions.size(); ++v) {
-    require_input(positions[v].allFinite(), source, "node " + std::to_string(v), "position is not finite");
+    if (!positions[v].allFinite()) throw InputError(source, "node " + std::to_string(v), "position is not finite");
   }
   for (std::size_t t = 0; t < tets.size(); ++t) {
     for (Index i : tets[t]) {
@@ -17,8 +17,8 @@ void TetMesh::validate(const std::string& source) const {
       }
     }
     const Tet& k = tets[t];
-    require_input(k[0] != k[1] && k[0] != k[2] && k[0] != k[3] && k[1] != k[2] && k[1] != k[3] && k[2] != k[3], source,
-                  "tet " + std::to_string(t), "repeats a node");
+    if (k[0] == k[1] || k[0] == k[2] || k[0] == k[3] || k[1] == k[2] || k[1] == k[3] || k[2] == k[3])
+      throw InputError(source, "tet " + std::to_string(t), "repeats a node");
   }
   require_input(
       tet_labels.empty() || tet_labels.size() == tets.size(), source, "tet labels",

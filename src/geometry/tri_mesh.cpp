@@ -19,14 +19,14 @@ void check_indices(const std::vector<Tri>& tris, std::size_t limit, const std::s
 
 void TriMesh::validate(const std::string& source) const {
   for (std::size_t v = 0; v < positions.size(); ++v) {
-    require_input(positions[v].allFinite(), source, "vertex " + std::to_string(v), "position is not finite");
+    if (!positions[v].allFinite()) throw InputError(source, "vertex " + std::to_string(v), "position is not finite");
   }
   check_indices(triangles, positions.size(), source, "triangle");
   require_input(
       normals.empty() || normals.size() == positions.size(), source, "normals",
       "count " + std::to_string(normals.size()) + " differs from vertex count " + std::to_string(positions.size()));
   for (std::size_t v = 0; v < normals.size(); ++v) {
-    require_input(normals[v].allFinite(), source, "normal " + std::to_string(v), "is not finite");
+    if (!normals[v].allFinite()) throw InputError(source, "normal " + std::to_string(v), "is not finite");
   }
   require_input(colors.empty() || colors.size() == positions.size(), source, "colors",
                 "count differs from vertex count");
@@ -34,7 +34,7 @@ void TriMesh::validate(const std::string& source) const {
                 "count differs from triangle count");
   check_indices(triangle_uvs, uvs.size(), source, "triangle UV");
   for (std::size_t i = 0; i < uvs.size(); ++i) {
-    require_input(uvs[i].allFinite(), source, "uv " + std::to_string(i), "is not finite");
+    if (!uvs[i].allFinite()) throw InputError(source, "uv " + std::to_string(i), "is not finite");
   }
   require_input(triangle_labels.empty() || triangle_labels.size() == triangles.size(), source, "triangle labels",
                 "count differs from triangle count");

@@ -461,8 +461,10 @@ std::vector<double> skin_moisture_ratio(const TrackingConnections& tracking, con
     double m = 0.0;
     for (int k = 0; k < 3; ++k) {
       const auto node = static_cast<std::size_t>(tracking.face_nodes[i][static_cast<std::size_t>(k)]);
-      require_input(node < node_moisture.size(), "skin moisture", "tracking connection " + std::to_string(i),
-                    "has a face node outside the " + std::to_string(node_moisture.size()) + " node moisture values");
+      if (node >= node_moisture.size())
+        throw InputError(
+            "skin moisture", "tracking connection " + std::to_string(i),
+            "has a face node outside the " + std::to_string(node_moisture.size()) + " node moisture values");
       m += tracking.weights[i][k] * node_moisture[node];
     }
     out[i] = std::clamp(m / initial_moisture, 0.0, 1.0);

@@ -13,16 +13,17 @@ StretchConstraints make_stretch_constraints(const std::vector<Vec3>& positions, 
                                             const std::string& source) {
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (Index v : triangles[t])
-      require_input(v >= 0 && static_cast<std::size_t>(v) < positions.size(), source, "triangle " + std::to_string(t),
-                    "has a vertex index out of range");
+      if (v < 0 || static_cast<std::size_t>(v) >= positions.size())
+        throw InputError(source, "triangle " + std::to_string(t), "has a vertex index out of range");
   StretchConstraints out;
   out.edge_vertices = unique_edges(triangles);
   out.edge_rest_length.reserve(out.edge_vertices.size());
   for (std::size_t e = 0; e < out.edge_vertices.size(); ++e) {
     const auto& [a, b] = out.edge_vertices[e];
     const double length = (positions[static_cast<std::size_t>(a)] - positions[static_cast<std::size_t>(b)]).norm();
-    require_input(length > 0.0, source, "edge " + std::to_string(a) + "-" + std::to_string(b),
-                  "has zero length (weld the mesh first)");
+    if (!(length > 0.0))
+      throw InputError(source, "edge " + std::to_string(a) + "-" + std::to_string(b),
+                       "has zero length (weld the mesh first)");
     out.edge_rest_length.push_back(length);
   }
   return out;

@@ -56,8 +56,9 @@ std::vector<Vec3> taubin_smoothed(const std::vector<Vec3>& positions, const std:
 void check_indices(const std::vector<Tri>& triangles, std::size_t n, const std::string& source) {
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (Index v : triangles[t])
-      require_input(v >= 0 && static_cast<std::size_t>(v) < n, source, "triangle " + std::to_string(t),
-                    "has vertex " + std::to_string(v) + " outside the " + std::to_string(n) + " vertices");
+      if (v < 0 || static_cast<std::size_t>(v) >= n)
+        throw InputError(source, "triangle " + std::to_string(t),
+                         "has vertex " + std::to_string(v) + " outside the " + std::to_string(n) + " vertices");
 }
 
 }  // namespace

@@ -18,10 +18,12 @@ void skin_moisture_ratio(const std::vector<Tri>& face_nodes, const std::vector<V
                     " tracking faces");
   require_input(std::isfinite(initial_moisture) && initial_moisture > 0.0, src, "initial_moisture", "must be positive");
   const auto nodes = static_cast<Index>(node_moisture.size());
+  // The message is built only for a bad node: this runs every frame over every skin vertex.
   for (std::size_t i = 0; i < face_nodes.size(); ++i)
     for (Index n : face_nodes[i])
-      require_input(n >= 0 && n < nodes, src, "face_nodes[" + std::to_string(i) + "]",
-                    "node " + std::to_string(n) + " is not one of the " + std::to_string(nodes) + " nodes");
+      if (n < 0 || n >= nodes)
+        throw InputError(src, "face_nodes[" + std::to_string(i) + "]",
+                         "node " + std::to_string(n) + " is not one of the " + std::to_string(nodes) + " nodes");
   ratio.resize(face_nodes.size());
   parallel_for(0, face_nodes.size(), [&](std::size_t i) {
     double phi = 0.0;
