@@ -1,5 +1,5 @@
 #pragma once
-/// Property tests shared by the quick (nested spheres) and slow (arm, head phantoms) suites: volume
+/// Property checks shared by the quick (nested spheres) and slow (arm, head phantoms) suites: volume
 /// conservation, bone volume, positive tets, labels against winding numbers, Hausdorff distance to the skin.
 
 #include <gtest/gtest.h>
@@ -63,26 +63,19 @@ inline const Meshed& coarse(const std::string& name) {
   return *slot;
 }
 
-}  // namespace tet_test
-
-class ModelTets : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(ModelTets, VolumeMatchesTheSkinWithinOnePercent) {
-  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+inline void check_volume_matches_the_skin_within_one_percent(const Meshed& m) {
   const double skin = enclosed_volume(m.skin);
   EXPECT_NEAR(tet_mesh_volume(m.tets), skin, 0.01 * skin);
   EXPECT_NEAR(m.report.tet_volume_mm3, tet_mesh_volume(m.tets), 1e-6 * skin);
 }
 
-TEST_P(ModelTets, BoneVolumeMatchesTheBonesWithinTwoPercent) {
-  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+inline void check_bone_volume_matches_the_bones_within_two_percent(const Meshed& m) {
   const double bone = enclosed_volume(m.bone);
   ASSERT_GT(bone, 0.0);
   EXPECT_NEAR(tet_mesh_volume(m.tets, tissue_bone), bone, 0.02 * bone);
 }
 
-TEST_P(ModelTets, EveryTetIsPositiveAndLabelled) {
-  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+inline void check_every_tet_is_positive_and_labelled(const Meshed& m) {
   ASSERT_GT(m.tets.tet_count(), 100u);
   EXPECT_NO_THROW(m.tets.validate("tets"));
   ASSERT_EQ(m.tets.tet_labels.size(), m.tets.tet_count());
@@ -105,8 +98,7 @@ TEST_P(ModelTets, EveryTetIsPositiveAndLabelled) {
   EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
 }
 
-TEST_P(ModelTets, LabelsAgreeWithPointInMeshTests) {
-  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+inline void check_labels_agree_with_point_in_mesh_tests(const Meshed& m) {
   const WindingNumber bone(m.bone);
   RandomStream rng(7, 0);
   std::vector<Vec3> samples;
@@ -128,10 +120,39 @@ TEST_P(ModelTets, LabelsAgreeWithPointInMeshTests) {
   EXPECT_GE(agree, 0.98 * static_cast<double>(samples.size()));
 }
 
-TEST_P(ModelTets, BoundaryLiesWithinAnEdgeLengthOfTheSkin) {
-  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+inline void check_boundary_lies_within_an_edge_length_of_the_skin(const Meshed& m) {
   const TriMesh boundary = tet_boundary_mesh(m.tets);
   EXPECT_LT(tet_test::one_way_distance(boundary, m.skin), m.edge);
   EXPECT_LT(tet_test::one_way_distance(m.skin, boundary), m.edge);
   EXPECT_TRUE(check_topology(boundary).is_closed());
+}
+
+}  // namespace tet_test
+
+// One test per model: the model is built once per test process (ctest runs each test in its own), and the
+// phantoms take about a minute each to mesh.
+class ModelTets : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ModelTets, VolumesTetsLabelsAndBoundaryMeetTheirTolerances) {
+  const tet_test::Meshed& m = tet_test::coarse(GetParam());
+  {
+    SCOPED_TRACE("volume matches the skin within one percent");
+    tet_test::check_volume_matches_the_skin_within_one_percent(m);
+  }
+  {
+    SCOPED_TRACE("bone volume matches the bones within two percent");
+    tet_test::check_bone_volume_matches_the_bones_within_two_percent(m);
+  }
+  {
+    SCOPED_TRACE("every tet is positive and labelled");
+    tet_test::check_every_tet_is_positive_and_labelled(m);
+  }
+  {
+    SCOPED_TRACE("labels agree with point in mesh tests");
+    tet_test::check_labels_agree_with_point_in_mesh_tests(m);
+  }
+  {
+    SCOPED_TRACE("boundary lies within an edge length of the skin");
+    tet_test::check_boundary_lies_within_an_edge_length_of_the_skin(m);
+  }
 }
