@@ -186,7 +186,7 @@ std::vector<Vec3> track_skin_points(const TriMesh& neutral_skin, const std::vect
   const auto hits = query.query_batch(points);
   std::vector<Vec3> out(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    require_input(hits[i].has_value(), "tracked skin", "point " + std::to_string(i), "no skin triangle found");
+    if (!hits[i]) throw InputError("tracked skin", "point " + std::to_string(i), "no skin triangle found");
     const Tri& t = neutral_skin.triangles[static_cast<std::size_t>(hits[i]->triangle)];
     const Vec3& w = hits[i]->barycentric;
     out[i] = w(0) * displaced_positions[static_cast<std::size_t>(t[0])] +

@@ -151,8 +151,8 @@ std::vector<MuscleShape> shape_muscles(const std::vector<MuscleLayout>& layouts,
         "has " + std::to_string(m.grid.size()) + " points for " + std::to_string(m.fibre_count) + " fibres of " +
             std::to_string(m.samples_per_fibre) + " samples");
     for (std::size_t i = 0; i < m.grid.size(); ++i) {
-      require_input(std::isfinite(m.grid[i].sum()), "muscle layout " + m.name, "grid point " + std::to_string(i),
-                    "coordinates must be finite");
+      if (!std::isfinite(m.grid[i].sum()))
+        throw InputError("muscle layout " + m.name, "grid point " + std::to_string(i), "coordinates must be finite");
     }
     require_input(std::isfinite(m.thickness_mm) && m.thickness_mm >= 0.0, "muscle layout " + m.name, "thickness_mm",
                   "must be finite and non-negative");

@@ -15,8 +15,9 @@ bool finite(const Vec3& p) {
 
 void check_finite(const std::vector<Vec3>& points, const std::string& what, const char* role) {
   for (std::size_t i = 0; i < points.size(); ++i) {
-    require_input(finite(points[i]), what, std::string(role) + " " + std::to_string(i),
-                  "coordinates must be finite (NaN or infinity found)");
+    if (!finite(points[i]))
+      throw InputError(what, std::string(role) + " " + std::to_string(i),
+                       "coordinates must be finite (NaN or infinity found)");
   }
 }
 

@@ -565,8 +565,9 @@ UvAtlas make_uv_atlas(const TriMesh& mesh, const std::vector<int>& triangle_char
                 "must be in [0, resolution / 4), got " + std::to_string(options.gutter_texels));
   std::map<int, std::size_t> chart_index;
   for (std::size_t t = 0; t < triangle_chart.size(); ++t) {
-    require_input(triangle_chart[t] >= 0, source, "triangle " + std::to_string(t),
-                  "has negative chart id " + std::to_string(triangle_chart[t]));
+    if (triangle_chart[t] < 0)
+      throw InputError(source, "triangle " + std::to_string(t),
+                       "has negative chart id " + std::to_string(triangle_chart[t]));
     chart_index.emplace(triangle_chart[t], 0);
   }
   std::vector<Chart> charts;

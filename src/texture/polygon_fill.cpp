@@ -52,8 +52,8 @@ void for_each_span(const std::vector<Crossing>& crossings, FillRule rule, const 
 void fill_hull(Image& target, const std::vector<Vec2>& hull, float inside_value, float outside_value) {
   if (hull.size() < 3 || target.empty()) return;
   for (std::size_t i = 0; i < hull.size(); ++i)
-    require_input(std::isfinite(hull[i][0]) && std::isfinite(hull[i][1]), "hull", "vertex " + std::to_string(i),
-                  "is not finite");
+    if (!std::isfinite(hull[i][0]) || !std::isfinite(hull[i][1]))
+      throw InputError("hull", "vertex " + std::to_string(i), "is not finite");
   // GetHullBoundingBox: texels whose centres lie in the box.
   double x_min = hull[0][0], x_max = x_min, y_min = hull[0][1], y_max = y_min;
   for (const Vec2& p : hull) {
