@@ -24,8 +24,8 @@ TriMesh with_positions(const TriMesh& mesh, const std::vector<Vec3>& positions, 
 }  // namespace
 
 TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
-                         const FitTemplateOptions& options)
-    : m_head(head), m_skull(skull), m_options(options) {
+                         const FitTemplateOptions& options, std::shared_ptr<SkullSkinViolationCounter> counter)
+    : m_head(head), m_skull(skull), m_options(options), m_counter(std::move(counter)) {
   Stopwatch total;
   const char* const source = "skull landmarks";
   require_input(
@@ -34,6 +34,9 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   require_input(!skull.triangles.empty(), "target skull", "", "has no triangles");
   skull.validate("target skull");
   if (m_skull.normals.size() != m_skull.positions.size()) compute_normals(m_skull);
+  if (!m_counter) m_counter = std::make_shared<SkullSkinViolationCounter>(m_skull);
+  require_input(m_counter->skull().positions == skull.positions && m_counter->skull().triangles == skull.triangles,
+                "violation counter", "", "counts another skull than the fit's");
   std::set<int> used;
   for (std::size_t i = 0; i < landmarks.names.size(); ++i) {
     const std::string& name = landmarks.names[i];
@@ -64,7 +67,7 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   if (options.count_violations) {
     const RbfWarp given(m_result.sources, m_result.targets, "skull landmarks");
     const std::vector<Vec3> skin = given.evaluate_batch(head.skin.positions);
-    m_result.violations_given_only = count_skull_skin_violations(m_skull, with_positions(head.skin, skin, 0));
+    m_result.violations_given_only = m_counter->count(with_positions(head.skin, skin, 0));
   }
 
   if (options.interpolated_landmarks) {
@@ -151,15 +154,16 @@ void TemplateFit::update_correction_depths() {
 
 std::size_t TemplateFit::correct_violations() {
   const ViolationCorrectionOptions& o = m_options.correction;
-  SkullSkinViolations v = count_skull_skin_violations(m_skull, m_result.skin);
+  SkullSkinViolations v = m_counter->count(m_result.skin);
   m_result.violations_before_correction = v;
   std::size_t added = 0;
   ViolationCorrectionOptions spaced = o;
   for (int round = 0; round < o.rounds && v.total() > 0; ++round) {
     ViolationCorrectionPairs more;
     for (;;) {
-      more = violation_correction_pairs(m_skull, m_head.skin, m_result.skin, v, m_given.skull, m_given.depth_vectors,
-                                        m_result.sources, m_result.targets, spaced);
+      more =
+          violation_correction_pairs(m_skull, m_counter->skull_closest(), m_head.skin, m_result.skin, v, m_given.skull,
+                                     m_given.depth_vectors, m_result.sources, m_result.targets, spaced);
       if (!more.sources.empty() || 0.5 * spaced.spacing_mm < o.min_spacing_mm) break;
       spaced.spacing_mm *= 0.5;
     }
@@ -175,7 +179,7 @@ std::size_t TemplateFit::correct_violations() {
     // factor() rebuilds the interpolated record from its argument: pass a copy.
     const InterpolatedLandmarks kept = m_result.interpolated;
     factor(kept, false);
-    v = count_skull_skin_violations(m_skull, m_result.skin);
+    v = m_counter->count(m_result.skin);
   }
   m_result.violations = v;
   return added;
@@ -309,7 +313,11 @@ std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
 }
 
 void TemplateFit::recount_violations() {
-  m_result.violations = count_skull_skin_violations(m_skull, m_result.skin);
+  m_result.violations = m_counter->count(m_result.skin);
+}
+
+SkullSkinViolations TemplateFit::count_violations(const TriMesh& skin) {
+  return m_counter->count(skin);
 }
 
 TemplateFitResult fit_template(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
