@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/timer.hpp"
 #include "craniofacial/rbf_warp.hpp"
 #include "geometry/mesh_measures.hpp"
@@ -55,7 +56,35 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
     m_result.targets.push_back(landmarks.skull[i] + landmarks.depth_vectors[i]);
   }
   m_result.given_pair_count = m_result.pair_names.size();
-  m_skull_rays = std::make_unique<RayCaster>(m_skull);
+  // The violation counter's trees (the skull's winding numbers and closest points) are built beside the ray
+  // caster and the template's interpolated landmarks.
+  const bool counting = options.count_violations || options.correction.rounds > 0;
+  parallel_for(
+      0, 2,
+      [&](std::size_t part) {
+        if (part == 0) {
+          if (counting) m_counter->prepare();
+          return;
+        }
+        m_skull_rays = std::make_unique<RayCaster>(m_skull);
+        if (options.interpolated_landmarks) {
+          // The same generators on the template's skull (with the template's own depths) and on the target's.
+          LandmarkDepths on_template;
+          for (std::size_t i = 0; i < m_given.names.size(); ++i) {
+            const TemplateLandmarkPair& pair =
+                head.landmarks[static_cast<std::size_t>(find_template_landmark(head, m_input_names[i]))];
+            on_template.names.push_back(pair.bone_name);
+            on_template.skull.push_back(pair.skull);
+            on_template.depth_vectors.push_back(pair.skin - pair.skull);
+          }
+          const RayCaster template_skull(head.skull), template_skin(head.skin);
+          const InterpolatedLandmarks t =
+              interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
+          m_template_interpolated_names = t.names;
+          m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
+        }
+      },
+      1);
 
   // All points the warp moves: the skin's vertices, the skin-only landmarks, then the muscle grids.
   std::vector<Vec3> points = head.skin.positions;
@@ -70,22 +99,6 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
     m_result.violations_given_only = m_counter->count(with_positions(head.skin, skin, 0));
   }
 
-  if (options.interpolated_landmarks) {
-    // The same generators on the template's skull (with the template's own depths) and on the target's.
-    LandmarkDepths on_template;
-    for (std::size_t i = 0; i < m_given.names.size(); ++i) {
-      const TemplateLandmarkPair& pair =
-          head.landmarks[static_cast<std::size_t>(find_template_landmark(head, m_input_names[i]))];
-      on_template.names.push_back(pair.bone_name);
-      on_template.skull.push_back(pair.skull);
-      on_template.depth_vectors.push_back(pair.skin - pair.skull);
-    }
-    const RayCaster template_skull(head.skull), template_skin(head.skin);
-    const InterpolatedLandmarks t =
-        interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
-    m_template_interpolated_names = t.names;
-    m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
-  }
   m_points = std::move(points);
   factor(target_interpolation(), options.count_violations && options.correction.rounds <= 0);
   if (options.correction.rounds > 0) correct_violations();

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "core/error.hpp"
@@ -102,6 +103,22 @@ void SkullSkinViolationCounter::build() const {
   m_skull_winding = std::make_unique<WindingNumber>(m_skull);
   m_skull_closest = std::make_unique<ClosestPointQuery>(m_skull);
   m_skull_closed = closed_surface(m_skull.triangles);
+  m_skull_edges.clear();
+  for (const Tri& t : m_skull.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<std::uint32_t>(t[static_cast<std::size_t>(k)]);
+      const auto b = static_cast<std::uint32_t>(t[static_cast<std::size_t>((k + 1) % 3)]);
+      m_skull_edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(m_skull_edges.begin(), m_skull_edges.end());
+  m_skull_edges.erase(std::unique(m_skull_edges.begin(), m_skull_edges.end()), m_skull_edges.end());
+  m_skull_reach.assign(m_skull.positions.size(), 0.0);
+  for (const auto& e : m_skull_edges) {
+    const double length = (m_skull.positions[e[0]] - m_skull.positions[e[1]]).norm();
+    m_skull_reach[e[0]] = std::max(m_skull_reach[e[0]], length);
+    m_skull_reach[e[1]] = std::max(m_skull_reach[e[1]], length);
+  }
   // The vertex grid: about 8 cells per vertex of the bounding box, at most 256 a side.
   const std::vector<Vec3>& p = m_skull.positions;
   Vec3 lo = p.front(), hi = p.front();
@@ -209,6 +226,45 @@ bool SkullSkinViolationCounter::swept_skull_vertices(const std::vector<Vec3>& ol
   return true;
 }
 
+std::size_t SkullSkinViolationCounter::grouped_sides(const WindingNumber& winding, const ClosestPointQuery& closest,
+                                                     std::vector<char>& outside) const {
+  const std::vector<Vec3>& p = m_skull.positions;
+  const std::size_t n = p.size();
+  const double margin = 1e-6 * coordinate_scale(p);
+  // Free vertices: no skin point within their longest edge (and a rounding margin).
+  std::vector<char> free(n, 0);
+  parallel_for(
+      0, n, [&](std::size_t v) { free[v] = closest.query(p[v], m_skull_reach[v] * (1.0 + 1e-9) + margin) ? 0 : 1; },
+      256);
+  // Union-find over the edges at free vertices; each group's side is its lowest vertex's.
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) {
+      parent[v] = parent[parent[v]];
+      v = parent[v];
+    }
+    return v;
+  };
+  for (const auto& e : m_skull_edges) {
+    if (!free[e[0]] && !free[e[1]]) continue;
+    const std::uint32_t a = find(e[0]), b = find(e[1]);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (find(v) == v) roots.push_back(v);
+  }
+  std::vector<Vec3> points(roots.size());
+  for (std::size_t i = 0; i < roots.size(); ++i) points[i] = p[roots[i]];
+  const std::vector<double> w = winding.evaluate_batch(points);
+  std::vector<char> root_outside(n, 0);
+  for (std::size_t i = 0; i < roots.size(); ++i) root_outside[roots[i]] = w[i] < 0.5 ? 1 : 0;
+  outside.assign(n, 0);
+  for (std::uint32_t v = 0; v < n; ++v) outside[v] = root_outside[find(v)];
+  return roots.size();
+}
+
 SkullSkinViolations SkullSkinViolationCounter::count(const TriMesh& skin) {
   require_input(!skin.triangles.empty(), "skin mesh", "", "has no triangles");
   skin.validate("skin mesh");
@@ -234,6 +290,7 @@ SkullSkinViolations SkullSkinViolationCounter::count(const TriMesh& skin) {
   }
   m_last_evaluated = 0;
   Counted now;
+  std::unique_ptr<ClosestPointQuery> skin_closest;
   if (nearest < m_counted.size() && nearest_move == 0.0) {
     now = m_counted[nearest];  // the same skin again
   } else {
@@ -248,6 +305,9 @@ SkullSkinViolations SkullSkinViolationCounter::count(const TriMesh& skin) {
       const std::vector<double> w = skin_winding.evaluate_batch(points);
       for (std::size_t i = 0; i < candidates.size(); ++i) now.skull_outside[candidates[i]] = w[i] < 0.5 ? 1 : 0;
       m_last_evaluated += candidates.size();
+    } else if (m_skin_closed) {
+      skin_closest = std::make_unique<ClosestPointQuery>(skin);
+      m_last_evaluated += grouped_sides(skin_winding, *skin_closest, now.skull_outside);
     } else {
       const std::vector<double> w = skin_winding.evaluate_batch(m_skull.positions);
       now.skull_outside.assign(n_skull, 0);
@@ -310,8 +370,8 @@ SkullSkinViolations SkullSkinViolationCounter::count(const TriMesh& skin) {
   v.skull_outside_skin = outside.size();
   v.skin_inside_skull = inside.size();
   if (!outside.empty()) {
-    const ClosestPointQuery to_skin(skin);
-    for (const auto& c : to_skin.query_batch(outside))
+    if (!skin_closest) skin_closest = std::make_unique<ClosestPointQuery>(skin);
+    for (const auto& c : skin_closest->query_batch(outside))
       v.max_skull_protrusion_mm = std::max(v.max_skull_protrusion_mm, c->distance);
   }
   if (!inside.empty()) {

@@ -4,6 +4,7 @@
 /// skin vertices inside the skull, by the generalised winding number (spatial/winding_number.hpp), which also
 /// classifies points of skulls with small holes. Reported before and after interpolated landmarks.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -47,11 +48,13 @@ SkullSkinViolations count_skull_skin_violations(const TriMesh& skull, const TriM
 /// - a skin vertex that moved by delta keeps its side unless the skull comes within delta of where it was (the
 ///   segment it moved along crosses no skull triangle), used only for a closed skull: the generalised winding
 ///   number of an open one varies continuously around its holes.
-/// The last 3 skins are remembered, and each count starts from the one whose vertices moved least. Skins with
-/// other triangles, open skins, and moves so large that the search would cost more than evaluating
-/// every skull vertex are counted in full. The counts, index lists and distances equal
-/// count_skull_skin_violations(skull, skin) (the winding number's far-field error, below 1e-2, never moves a
-/// point off the surface across 1/2). Not thread-safe (counting updates the remembered skin).
+/// The last 3 skins are remembered, and each count starts from the one whose vertices moved least. A skin with
+/// other triangles, or moved so far that the search would cost more than evaluating every skull vertex, is
+/// counted anew; for a closed skin the skull vertices are then grouped first: a vertex with no skin point within
+/// its longest edge shares its side with its neighbours (no edge from it can cross the skin), and the winding
+/// number is evaluated once per group of vertices joined so. Open skins are evaluated at every vertex. The counts,
+/// index lists and distances equal count_skull_skin_violations(skull, skin) (the winding number's far-field error,
+/// below 1e-2, never moves a point off the surface across 1/2). Not thread-safe (counting updates the remembered skin).
 class SkullSkinViolationCounter {
  public:
   /// Copies `skull` (validated, with triangles: InputError as count_skull_skin_violations).
@@ -60,14 +63,15 @@ class SkullSkinViolationCounter {
   SkullSkinViolationCounter(const SkullSkinViolationCounter&) = delete;
   SkullSkinViolationCounter& operator=(const SkullSkinViolationCounter&) = delete;
 
+  /// Builds the skull's trees now (else the first count does).
+  void prepare() const { build(); }
   /// The violations between the skull and `skin` (validated, with triangles).
   SkullSkinViolations count(const TriMesh& skin);
 
   const TriMesh& skull() const { return m_skull; }
   /// Closest points on the skull (built on first use; shared with violation_correction_pairs).
   const ClosestPointQuery& skull_closest() const;
-  /// Skull and skin vertices whose winding number the last count evaluated (#skull + #skin vertices for a
-  /// full count).
+  /// Winding-number evaluations of the last count (at most #skull + #skin vertices).
   std::size_t last_evaluated() const { return m_last_evaluated; }
 
  private:
@@ -76,6 +80,10 @@ class SkullSkinViolationCounter {
   /// the search would cost more than a full evaluation.
   bool swept_skull_vertices(const std::vector<Vec3>& old, const std::vector<Vec3>& positions,
                             std::vector<std::uint32_t>& out) const;
+  /// Sides of all skull vertices against the closed `skin` (`winding` its tree, `closest` its closest points), by
+  /// the groups above; returns the number of winding-number evaluations.
+  std::size_t grouped_sides(const WindingNumber& winding, const ClosestPointQuery& closest,
+                            std::vector<char>& outside) const;
 
   TriMesh m_skull;
   mutable std::unique_ptr<WindingNumber> m_skull_winding;
@@ -86,6 +94,9 @@ class SkullSkinViolationCounter {
   mutable double m_grid_cell_mm = 1.0;
   mutable int m_grid_size[3] = {1, 1, 1};
   mutable std::vector<std::uint32_t> m_grid_start, m_grid_vertices;
+  /// The skull's edges (each once, lower index first) and each vertex's longest edge (mm).
+  mutable std::vector<std::array<std::uint32_t, 2>> m_skull_edges;
+  mutable std::vector<double> m_skull_reach;
 
   /// A counted skin and the sides found: the next count starts from the nearest of the last few.
   struct Counted {
