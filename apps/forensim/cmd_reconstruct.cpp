@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "core/error.hpp"
 #include "core/job.hpp"
+#include "core/parallel.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
 #include "craniofacial/face_evaluation.hpp"
@@ -171,34 +172,52 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (landmark_mode != "template" && landmark_mode != "auto") file_landmarks = read_landmarks(landmark_mode);
   timings.add("inputs", watch.lap());
 
-  const TemplateHead head = make_template_head(template_head_options(job.template_detail));
-  timings.add("template", watch.lap());
-
+  // The template and the skull are independent: a CT's skull is read and extracted while the template is built
+  // (each stage's own time is recorded; they overlap).
+  const TemplateHeadOptions template_options = template_head_options(job.template_detail);
+  TemplateHead head;
   Skull skull;
   std::optional<ScalarGrid> volume;
   SkullInputOptions skull_options;
   skull_options.mesh_units.unit = job.unit;
   skull_options.mesh_units.scale = job.mesh_scale;
   skull_options.bone_iso_value = job.bone_iso;
+  const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
+  if (!builtin_skull && !phantom_ct && is_volume_path(skull_path) && !std::filesystem::exists(skull_path)) {
+    throw IoError(skull_path, "does not exist");
+  }
+  double template_s = 0.0, skull_s = 0.0;
+  const auto build_template = [&] {
+    Stopwatch part;
+    head = make_template_head(template_options);
+    template_s = part.seconds();
+  };
+  const auto read_skull = [&] {
+    Stopwatch part;
+    // A CT is kept: the evaluation takes the real face from it.
+    if (phantom_ct) {
+      volume = make_ct_head_phantom();
+      skull = skull_from_volume(*volume, "built-in CT head phantom", skull_options);
+    } else if (is_volume_path(skull_path)) {
+      volume = read_volume(skull_path);
+      skull = skull_from_volume(*volume, skull_path, skull_options);
+    } else {
+      skull = load_skull(skull_path, skull_options);
+    }
+    skull_s = part.seconds();
+  };
   if (builtin_skull) {
+    build_template();
     skull.mesh = head.skull;
     skull.source = "built-in template skull (head phantom)";
     skull.kind = "builtin";
   } else {
-    // A CT is kept: the evaluation takes the real face from it.
-    const std::string path = job.ct.empty() ? job.skull : job.ct;
-    if (phantom_ct) {
-      volume = make_ct_head_phantom();
-      skull = skull_from_volume(*volume, "built-in CT head phantom", skull_options);
-    } else if (is_volume_path(path)) {
-      if (!std::filesystem::exists(path)) throw IoError(path, "does not exist");
-      volume = read_volume(path);
-      skull = skull_from_volume(*volume, path, skull_options);
-    } else {
-      skull = load_skull(path, skull_options);
-    }
+    parallel_for(
+        0, 2, [&](std::size_t part) { part == 0 ? build_template() : read_skull(); }, 1);
   }
-  timings.add("skull", watch.lap());
+  timings.add("template", template_s);
+  timings.add("skull", skull_s);
+  timings.add("template and skull (side by side)", watch.lap());
   std::optional<LandmarkDetection> detection;
   std::optional<SkullCompletion> completion;
   if (landmark_mode == "auto") {

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/timer.hpp"
 #include "craniofacial/rbf_warp.hpp"
 #include "geometry/mesh_measures.hpp"
@@ -24,8 +25,8 @@ TriMesh with_positions(const TriMesh& mesh, const std::vector<Vec3>& positions, 
 }  // namespace
 
 TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
-                         const FitTemplateOptions& options)
-    : m_head(head), m_skull(skull), m_options(options) {
+                         const FitTemplateOptions& options, std::shared_ptr<SkullSkinViolationCounter> counter)
+    : m_head(head), m_skull(skull), m_options(options), m_counter(std::move(counter)) {
   Stopwatch total;
   const char* const source = "skull landmarks";
   require_input(
@@ -34,6 +35,9 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   require_input(!skull.triangles.empty(), "target skull", "", "has no triangles");
   skull.validate("target skull");
   if (m_skull.normals.size() != m_skull.positions.size()) compute_normals(m_skull);
+  if (!m_counter) m_counter = std::make_shared<SkullSkinViolationCounter>(m_skull);
+  require_input(m_counter->skull().positions == skull.positions && m_counter->skull().triangles == skull.triangles,
+                "violation counter", "", "counts another skull than the fit's");
   std::set<int> used;
   for (std::size_t i = 0; i < landmarks.names.size(); ++i) {
     const std::string& name = landmarks.names[i];
@@ -52,7 +56,35 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
     m_result.targets.push_back(landmarks.skull[i] + landmarks.depth_vectors[i]);
   }
   m_result.given_pair_count = m_result.pair_names.size();
-  m_skull_rays = std::make_unique<RayCaster>(m_skull);
+  // The violation counter's trees (the skull's winding numbers and closest points) are built beside the ray
+  // caster and the template's interpolated landmarks.
+  const bool counting = options.count_violations || options.correction.rounds > 0;
+  parallel_for(
+      0, 2,
+      [&](std::size_t part) {
+        if (part == 0) {
+          if (counting) m_counter->prepare();
+          return;
+        }
+        m_skull_rays = std::make_unique<RayCaster>(m_skull);
+        if (options.interpolated_landmarks) {
+          // The same generators on the template's skull (with the template's own depths) and on the target's.
+          LandmarkDepths on_template;
+          for (std::size_t i = 0; i < m_given.names.size(); ++i) {
+            const TemplateLandmarkPair& pair =
+                head.landmarks[static_cast<std::size_t>(find_template_landmark(head, m_input_names[i]))];
+            on_template.names.push_back(pair.bone_name);
+            on_template.skull.push_back(pair.skull);
+            on_template.depth_vectors.push_back(pair.skin - pair.skull);
+          }
+          const RayCaster template_skull(head.skull), template_skin(head.skin);
+          const InterpolatedLandmarks t =
+              interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
+          m_template_interpolated_names = t.names;
+          m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
+        }
+      },
+      1);
 
   // All points the warp moves: the skin's vertices, the skin-only landmarks, then the muscle grids.
   std::vector<Vec3> points = head.skin.positions;
@@ -64,25 +96,9 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   if (options.count_violations) {
     const RbfWarp given(m_result.sources, m_result.targets, "skull landmarks");
     const std::vector<Vec3> skin = given.evaluate_batch(head.skin.positions);
-    m_result.violations_given_only = count_skull_skin_violations(m_skull, with_positions(head.skin, skin, 0));
+    m_result.violations_given_only = m_counter->count(with_positions(head.skin, skin, 0));
   }
 
-  if (options.interpolated_landmarks) {
-    // The same generators on the template's skull (with the template's own depths) and on the target's.
-    LandmarkDepths on_template;
-    for (std::size_t i = 0; i < m_given.names.size(); ++i) {
-      const TemplateLandmarkPair& pair =
-          head.landmarks[static_cast<std::size_t>(find_template_landmark(head, m_input_names[i]))];
-      on_template.names.push_back(pair.bone_name);
-      on_template.skull.push_back(pair.skull);
-      on_template.depth_vectors.push_back(pair.skin - pair.skull);
-    }
-    const RayCaster template_skull(head.skull), template_skin(head.skin);
-    const InterpolatedLandmarks t =
-        interpolate_landmarks(head.skull, template_skull, on_template, options.interpolation);
-    m_template_interpolated_names = t.names;
-    m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
-  }
   m_points = std::move(points);
   factor(target_interpolation(), options.count_violations && options.correction.rounds <= 0);
   if (options.correction.rounds > 0) correct_violations();
@@ -151,15 +167,16 @@ void TemplateFit::update_correction_depths() {
 
 std::size_t TemplateFit::correct_violations() {
   const ViolationCorrectionOptions& o = m_options.correction;
-  SkullSkinViolations v = count_skull_skin_violations(m_skull, m_result.skin);
+  SkullSkinViolations v = m_counter->count(m_result.skin);
   m_result.violations_before_correction = v;
   std::size_t added = 0;
   ViolationCorrectionOptions spaced = o;
   for (int round = 0; round < o.rounds && v.total() > 0; ++round) {
     ViolationCorrectionPairs more;
     for (;;) {
-      more = violation_correction_pairs(m_skull, m_head.skin, m_result.skin, v, m_given.skull, m_given.depth_vectors,
-                                        m_result.sources, m_result.targets, spaced);
+      more =
+          violation_correction_pairs(m_skull, m_counter->skull_closest(), m_head.skin, m_result.skin, v, m_given.skull,
+                                     m_given.depth_vectors, m_result.sources, m_result.targets, spaced);
       if (!more.sources.empty() || 0.5 * spaced.spacing_mm < o.min_spacing_mm) break;
       spaced.spacing_mm *= 0.5;
     }
@@ -175,7 +192,7 @@ std::size_t TemplateFit::correct_violations() {
     // factor() rebuilds the interpolated record from its argument: pass a copy.
     const InterpolatedLandmarks kept = m_result.interpolated;
     factor(kept, false);
-    v = count_skull_skin_violations(m_skull, m_result.skin);
+    v = m_counter->count(m_result.skin);
   }
   m_result.violations = v;
   return added;
@@ -309,7 +326,11 @@ std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
 }
 
 void TemplateFit::recount_violations() {
-  m_result.violations = count_skull_skin_violations(m_skull, m_result.skin);
+  m_result.violations = m_counter->count(m_result.skin);
+}
+
+SkullSkinViolations TemplateFit::count_violations(const TriMesh& skin) {
+  return m_counter->count(skin);
 }
 
 TemplateFitResult fit_template(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,

@@ -69,8 +69,10 @@ class TemplateFit {
   /// head's frame). `landmarks`: names (a template pair's skin name, or its bone name when that is unique),
   /// skull positions and depth vectors. Throws InputError for an unknown or repeated name, sizes that differ,
   /// fewer than 4 usable pairs, non-finite values, or degenerate landmark sets (RbfWarp).
+  /// `counter`: a violation counter of this same skull to share (a new fit of the skull keeps its trees and
+  /// remembered skin); null: the fit makes its own.
   TemplateFit(const TemplateHead& head, const TriMesh& skull, const LandmarkDepths& landmarks,
-              const FitTemplateOptions& options = {});
+              const FitTemplateOptions& options = {}, std::shared_ptr<SkullSkinViolationCounter> counter = nullptr);
   ~TemplateFit();
   TemplateFit(const TemplateFit&) = delete;
   TemplateFit& operator=(const TemplateFit&) = delete;
@@ -92,6 +94,12 @@ class TemplateFit {
   std::size_t set_landmarks(const std::vector<Vec3>& skull_positions, const std::vector<Vec3>& depth_vectors);
   /// Recounts result().violations for the current skin.
   void recount_violations();
+  /// The violations between the skull and `skin` (the template's skin at other positions, such as the guided
+  /// skin), by the fit's counter: equal to count_skull_skin_violations(skull, skin), faster after the fit's own
+  /// counts of nearby skins.
+  SkullSkinViolations count_violations(const TriMesh& skin);
+  /// The counter (to share with a new fit of the same skull).
+  const std::shared_ptr<SkullSkinViolationCounter>& violation_counter() const { return m_counter; }
   /// Runs the correction rounds again for the current landmarks (options.correction; the constructor runs them
   /// once): the pairs found so far are kept, new ones are added where violations remain. Updates
   /// result().violations. Returns the number of pairs added.
@@ -123,6 +131,7 @@ class TemplateFit {
   TriMesh m_skull;
   FitTemplateOptions m_options;
   std::unique_ptr<RayCaster> m_skull_rays;
+  std::shared_ptr<SkullSkinViolationCounter> m_counter;
   LandmarkDepths m_given;  ///< the input, keyed by bone names for the interpolation
   std::vector<std::string> m_input_names;
   std::vector<std::string> m_template_interpolated_names;  ///< generated on the template's skull

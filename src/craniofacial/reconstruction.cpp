@@ -203,7 +203,7 @@ std::size_t Reconstruction::move_landmark(const std::string& name, const Vec3& p
     const LandmarkDepths given = fit_input(m_head, vectors, m_result.used_in_warp, m_result.not_on_template);
     FitTemplateOptions fit_options = m_options.fit;
     fit_options.count_violations = false;
-    m_fit = std::make_unique<TemplateFit>(m_head, m_surface.mesh(), given, fit_options);
+    m_fit = std::make_unique<TemplateFit>(m_head, m_surface.mesh(), given, fit_options, m_fit->violation_counter());
     apply_guides();
     return m_fit->result().targets.size();
   }
@@ -259,7 +259,6 @@ void Reconstruction::recount_violations() {
 
 void Reconstruction::count_violations(bool fit_counted) {
   const TemplateFitResult& fit = m_fit->result();
-  const TriMesh& skull = m_surface.mesh();
   // The warp with the given pairs only (Figure 6a), on the template's skin.
   const std::size_t n = fit.given_pair_count;
   const std::vector<Vec3> sources(fit.sources.begin(), fit.sources.begin() + static_cast<long>(n));
@@ -267,10 +266,11 @@ void Reconstruction::count_violations(bool fit_counted) {
   TriMesh given_skin = m_head.skin;
   given_skin.positions = RbfWarp(sources, targets, "skull landmarks").evaluate_batch(m_head.skin.positions);
   compute_normals(given_skin);
-  m_result.violations_given_only = count_skull_skin_violations(skull, given_skin);
-  m_result.violations_interpolated = fit_counted ? fit.violations : count_skull_skin_violations(skull, fit.skin);
+  // The fit's counter remembers the skins it counted last: the fit's own and the guided one are near each other.
+  m_result.violations_interpolated = fit_counted ? fit.violations : m_fit->count_violations(fit.skin);
   m_result.violations_final =
-      m_options.guides ? count_skull_skin_violations(skull, m_result.skin) : m_result.violations_interpolated;
+      m_options.guides ? m_fit->count_violations(m_result.skin) : m_result.violations_interpolated;
+  m_result.violations_given_only = m_fit->count_violations(given_skin);
   m_result.violations_current = true;
 }
 
@@ -357,7 +357,8 @@ std::size_t Reconstruction::remove_landmark(const std::string& name) {
                       " landmark pairs for the warp; it needs at least 4 (eq. 1)");
     FitTemplateOptions fit_options = m_options.fit;
     fit_options.count_violations = false;
-    fit = std::make_unique<TemplateFit>(m_head, m_surface.mesh(), given, fit_options);  // throws when degenerate
+    fit = std::make_unique<TemplateFit>(m_head, m_surface.mesh(), given, fit_options,
+                                        m_fit->violation_counter());  // throws when degenerate
   }
   m_result.skull_landmarks = std::move(landmarks);
   m_result.depth_vectors = std::move(vectors);

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/timer.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
@@ -492,61 +493,85 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
                 "must be in [64, 16384]");
   Stopwatch watch;
   TemplateHead head;
-  head.skin =
-      keep_largest_components(remesh_isotropic(phantom_surface(phantom(), PhantomSurface::skin, options.skin_voxel_mm),
-                                               options.skin_edge_mm, options.remesh_iterations),
-                              1);
-  compute_normals(head.skin);
-  head.seconds_skin = watch.lap();
-  head.skull = skull_only(phantom_surface(SkullRegion(), PhantomSurface::bone, options.skull_voxel_mm));
-  compute_normals(head.skull);
-  head.seconds_skull = watch.lap();
+  // The skin and the skull are independent: built side by side (the skin's remeshing runs on one thread).
+  parallel_for(
+      0, 2,
+      [&](std::size_t part) {
+        Stopwatch part_watch;
+        if (part == 0) {
+          head.skin = keep_largest_components(
+              remesh_isotropic(phantom_surface(phantom(), PhantomSurface::skin, options.skin_voxel_mm),
+                               options.skin_edge_mm, options.remesh_iterations),
+              1);
+          compute_normals(head.skin);
+          head.seconds_skin = part_watch.seconds();
+        } else {
+          head.skull = skull_only(phantom_surface(SkullRegion(), PhantomSurface::bone, options.skull_voxel_mm));
+          compute_normals(head.skull);
+          head.seconds_skull = part_watch.seconds();
+        }
+      },
+      1);
+  watch.lap();
 
-  // Landmark pairs: the definitions on the phantom's bone, moved onto the skull mesh, and the skin where the
-  // normal meets it.
-  const ClosestPointQuery on_skull(head.skull);
-  const RayCaster skin_rays(head.skin);
-  for (const PhantomSkullLandmark& l : head_phantom_skull_landmarks()) {
-    TemplateLandmarkPair pair;
-    pair.bone_name = l.bone_name;
-    pair.skin_name = l.skin_name;
-    pair.midline = l.midline;
-    pair.skull = on_skull.query(l.position)->point;
-    pair.skull_normal = l.normal;
-    const auto hit = skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, 80.0);
-    if (!hit) throw NumericError("template head: the normal at skull landmark " + l.bone_name + " misses the skin");
-    pair.skin = hit->point;
-    pair.depth_mm = hit->t;
-    head.landmarks.push_back(pair);
-  }
-
-  const ClosestPointQuery skin_points(head.skin);
-  for (TemplateSkinLandmark l : phantom_skin_landmarks()) {
-    l.position = skin_points.query(l.position)->point;
-    head.skin_landmarks.push_back(l);
-  }
-  head.seconds_landmarks = watch.lap();
-  if (options.uv_atlas) {
-    head.triangle_chart = assign_charts(head.skin);
-    const auto nb = triangle_edge_neighbours(head.skin);
-    for (int round = 0; round < 50 && clean_charts(nb, head.triangle_chart) > 0; ++round) {
-    }
-    UvAtlasOptions atlas_options;
-    atlas_options.resolution = options.uv_resolution;
-    UvAtlas atlas = make_uv_atlas(head.skin, head.triangle_chart, atlas_options);
-    head.skin = std::move(atlas.mesh);
-    head.uv_l2_stretch = atlas.stats.l2_stretch;
-    head.uv_overlap_free = atlas.stats.overlap_free;
-  }
+  // The landmarks on the skin as remeshed, and beside them the UV atlas (which cuts the skin along its seams).
+  const TriMesh skin = head.skin;
+  parallel_for(
+      0, 2,
+      [&](std::size_t part) {
+        Stopwatch part_watch;
+        if (part == 0) {
+          // Landmark pairs: the definitions on the phantom's bone, moved onto the skull mesh, and the skin where
+          // the normal meets it.
+          const ClosestPointQuery on_skull(head.skull);
+          const RayCaster skin_rays(skin);
+          for (const PhantomSkullLandmark& l : head_phantom_skull_landmarks()) {
+            TemplateLandmarkPair pair;
+            pair.bone_name = l.bone_name;
+            pair.skin_name = l.skin_name;
+            pair.midline = l.midline;
+            pair.skull = on_skull.query(l.position)->point;
+            pair.skull_normal = l.normal;
+            const auto hit = skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, 80.0);
+            if (!hit) {
+              throw NumericError("template head: the normal at skull landmark " + l.bone_name + " misses the skin");
+            }
+            pair.skin = hit->point;
+            pair.depth_mm = hit->t;
+            head.landmarks.push_back(pair);
+          }
+          const ClosestPointQuery skin_points(skin);
+          for (TemplateSkinLandmark l : phantom_skin_landmarks()) {
+            l.position = skin_points.query(l.position)->point;
+            head.skin_landmarks.push_back(l);
+          }
+          head.seconds_landmarks = part_watch.seconds();
+        } else {
+          if (options.uv_atlas) {
+            head.triangle_chart = assign_charts(skin);
+            const auto nb = triangle_edge_neighbours(skin);
+            for (int round = 0; round < 50 && clean_charts(nb, head.triangle_chart) > 0; ++round) {
+            }
+            UvAtlasOptions atlas_options;
+            atlas_options.resolution = options.uv_resolution;
+            UvAtlas atlas = make_uv_atlas(skin, head.triangle_chart, atlas_options);
+            head.skin = std::move(atlas.mesh);
+            head.uv_l2_stretch = atlas.stats.l2_stretch;
+            head.uv_overlap_free = atlas.stats.overlap_free;
+          }
+          head.seconds_atlas = part_watch.seconds();
+        }
+      },
+      1);
   head.chart_names = {"top", "bottom", "face", "left", "right", "back"};
-  head.seconds_atlas = watch.lap();
+  watch.lap();
 
   head.muscles = head_phantom_muscle_layouts(options.muscle_fibres, options.muscle_samples);
   const ClosestPointQuery on_skin(head.skin);
   for (MuscleLayout& m : head.muscles) {
     for (Vec3& p : m.grid) p = on_skin.query(p)->point;
   }
-  head.seconds = head.seconds_skin + head.seconds_skull + head.seconds_landmarks + head.seconds_atlas + watch.lap();
+  head.seconds = watch.seconds();
   return head;
 }
 

@@ -68,7 +68,7 @@ struct TemplateHead {
   std::vector<TemplateLandmarkPair> landmarks;
   std::vector<TemplateSkinLandmark> skin_landmarks;
   std::vector<MuscleLayout> muscles;  ///< the 24 muscles, grids on the skin
-  double seconds = 0.0;               ///< time to build, and its stages:
+  double seconds = 0.0;               ///< time to build, and its stages (skin beside skull, landmarks beside atlas):
   double seconds_skin = 0.0, seconds_skull = 0.0, seconds_landmarks = 0.0, seconds_atlas = 0.0;
 };
 

@@ -73,6 +73,17 @@ ViolationCorrectionPairs violation_correction_pairs(const TriMesh& skull, const 
                                                     const std::vector<Vec3>& existing_sources,
                                                     const std::vector<Vec3>& existing_targets,
                                                     const ViolationCorrectionOptions& options) {
+  require_input(!skull.triangles.empty(), "violation correction", "skull", "has no triangles");
+  const ClosestPointQuery to_skull(skull);
+  return violation_correction_pairs(skull, to_skull, rest_skin, warped_skin, violations, landmark_skull,
+                                    landmark_depth_vectors, existing_sources, existing_targets, options);
+}
+
+ViolationCorrectionPairs violation_correction_pairs(
+    const TriMesh& skull, const ClosestPointQuery& to_skull, const TriMesh& rest_skin, const TriMesh& warped_skin,
+    const SkullSkinViolations& violations, const std::vector<Vec3>& landmark_skull,
+    const std::vector<Vec3>& landmark_depth_vectors, const std::vector<Vec3>& existing_sources,
+    const std::vector<Vec3>& existing_targets, const ViolationCorrectionOptions& options) {
   const char* const source = "violation correction";
   require_input(rest_skin.positions.size() == warped_skin.positions.size() &&
                     rest_skin.triangles.size() == warped_skin.triangles.size(),
@@ -101,7 +112,6 @@ ViolationCorrectionPairs violation_correction_pairs(const TriMesh& skull, const 
     }
   }
   if (!violations.skin_vertices_inside.empty()) {
-    const ClosestPointQuery to_skull(skull);
     std::vector<Vec3> points;
     for (const std::size_t v : violations.skin_vertices_inside) {
       require_input(v < warped_skin.positions.size(), source, "violations", "skin vertex index out of range");

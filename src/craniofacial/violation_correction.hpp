@@ -71,4 +71,14 @@ ViolationCorrectionPairs violation_correction_pairs(const TriMesh& skull, const 
                                                     const std::vector<Vec3>& existing_targets,
                                                     const ViolationCorrectionOptions& options = {});
 
+class ClosestPointQuery;
+
+/// violation_correction_pairs with the skull's closest-point query given (`skull_closest`, built on `skull`: a
+/// SkullSkinViolationCounter's), so that successive rounds do not build it again. The same pairs.
+ViolationCorrectionPairs violation_correction_pairs(
+    const TriMesh& skull, const ClosestPointQuery& skull_closest, const TriMesh& rest_skin, const TriMesh& warped_skin,
+    const SkullSkinViolations& violations, const std::vector<Vec3>& landmark_skull,
+    const std::vector<Vec3>& landmark_depth_vectors, const std::vector<Vec3>& existing_sources,
+    const std::vector<Vec3>& existing_targets, const ViolationCorrectionOptions& options = {});
+
 }  // namespace forensim

@@ -12,6 +12,13 @@ namespace forensim {
 namespace {
 
 constexpr int leaf_size = 8;
+/// Subtrees with more triangles than this are built in parallel with their sibling.
+constexpr int parallel_build_size = 4096;
+
+/// Nodes of the tree over `count` triangles (the split below: halves, leaves of at most leaf_size).
+int subtree_nodes(int count) {
+  return count <= leaf_size ? 1 : 1 + subtree_nodes(count / 2) + subtree_nodes(count - count / 2);
+}
 constexpr double inv_4pi = 1.0 / (4.0 * std::numbers::pi);
 
 }  // namespace
@@ -54,16 +61,16 @@ WindingNumber::WindingNumber(const TriMesh& mesh, double beta) : m_beta(beta) {
     centroids[t] = (m_a[t] + m_b[t] + m_c[t]) / 3.0;
   }
   if (n > 0) {
-    m_nodes.reserve(2 * (n / leaf_size + 1));
-    build(0, static_cast<int>(n), centroids);
+    // Node indices are the preorder of the split, known from the subtree sizes: the two halves of a node are
+    // built concurrently into their own ranges, the same tree at any thread count.
+    m_nodes.resize(static_cast<std::size_t>(subtree_nodes(static_cast<int>(n))));
+    build(0, 0, static_cast<int>(n), centroids);
   }
 }
 
-int WindingNumber::build(int begin, int end, std::vector<Vec3>& centroids) {
-  const int index = static_cast<int>(m_nodes.size());
-  m_nodes.emplace_back();
+void WindingNumber::build(int index, int begin, int end, std::vector<Vec3>& centroids) {
   {
-    Node& node = m_nodes.back();
+    Node& node = m_nodes[static_cast<std::size_t>(index)];
     node.box_min = Vec3::Constant(std::numeric_limits<double>::infinity());
     node.box_max = -node.box_min;
     double area_sum = 0.0;
@@ -96,12 +103,13 @@ int WindingNumber::build(int begin, int end, std::vector<Vec3>& centroids) {
     }
   }
   if (end - begin <= leaf_size) {
-    m_nodes[index].first = begin;
-    m_nodes[index].count = end - begin;
-    return index;
+    m_nodes[static_cast<std::size_t>(index)].first = begin;
+    m_nodes[static_cast<std::size_t>(index)].count = end - begin;
+    return;
   }
   // Median split of the centroids along the longest axis of their bounds.
-  const Vec3 extent = m_nodes[index].box_max - m_nodes[index].box_min;
+  const Vec3 extent =
+      m_nodes[static_cast<std::size_t>(index)].box_max - m_nodes[static_cast<std::size_t>(index)].box_min;
   int axis = 0;
   if (extent[1] > extent[axis]) axis = 1;
   if (extent[2] > extent[axis]) axis = 2;
@@ -123,12 +131,27 @@ int WindingNumber::build(int begin, int end, std::vector<Vec3>& centroids) {
     std::copy(c.begin(), c.end(), m_c.begin() + begin);
     std::copy(centre.begin(), centre.end(), centroids.begin() + begin);
   }
-  const int left = build(begin, middle, centroids);
-  const int right = build(middle, end, centroids);
-  m_nodes[index].first = left;
-  m_nodes[index].count = 0;
-  m_nodes[index].right = right;
-  return index;
+  const int left = index + 1;
+  const int right = left + subtree_nodes(middle - begin);
+  if (end - begin > parallel_build_size) {
+    parallel_for(
+        0, 2,
+        [&](std::size_t half) {
+          if (half == 0) {
+            build(left, begin, middle, centroids);
+          } else {
+            build(right, middle, end, centroids);
+          }
+        },
+        1);
+  } else {
+    build(left, begin, middle, centroids);
+    build(right, middle, end, centroids);
+  }
+  Node& node = m_nodes[static_cast<std::size_t>(index)];
+  node.first = left;
+  node.count = 0;
+  node.right = right;
 }
 
 double WindingNumber::evaluate_node(int root, const Vec3& q) const {

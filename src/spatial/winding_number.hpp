@@ -58,7 +58,8 @@ class WindingNumber {
     int right = -1;              ///< inner nodes: right child
   };
 
-  int build(int begin, int end, std::vector<Vec3>& centroids);
+  /// Fills node `index` and its subtree over triangles [begin, end).
+  void build(int index, int begin, int end, std::vector<Vec3>& centroids);
   double evaluate_node(int node, const Vec3& q) const;
 
   std::vector<Vec3> m_a, m_b, m_c;  ///< triangle corners in BVH order

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "geometry/primitives.hpp"
@@ -105,4 +106,21 @@ TEST(WindingNumber, ClassifiesInsideOutsideOfClosedAndHoledSpheres) {
 TEST(WindingNumber, EmptyMeshAndBadBeta) {
   EXPECT_EQ(WindingNumber(TriMesh{}).evaluate(Vec3::Zero()), 0.0);
   EXPECT_THROW(WindingNumber(make_icosphere(Vec3::Zero(), 1.0, 0), 0.5), InputError);
+}
+
+TEST(WindingNumber, SameTreeAndValuesAtAnyThreadCount) {
+  // 20k triangles: the tree's halves above 4096 triangles are built concurrently.
+  const TriMesh mesh = make_icosphere(Vec3(1, 2, 3), 50.0, 5);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 200; ++i)
+    points.push_back(Vec3(1, 2, 3) + Vec3(std::sin(i), std::cos(1.3 * i), std::sin(0.7 * i)) * 0.6 * i);
+  set_thread_count(1);
+  const WindingNumber one(mesh);
+  const std::vector<double> a = one.evaluate_batch(points);
+  set_thread_count(0);
+  const WindingNumber all(mesh);
+  const std::vector<double> b = all.evaluate_batch(points);
+  EXPECT_EQ(one.node_count(), all.node_count());
+  EXPECT_EQ(a, b);
+  for (std::size_t i = 0; i < points.size(); i += 17) EXPECT_NEAR(a[i], winding_number_exact(mesh, points[i]), 5e-3);
 }
