@@ -350,7 +350,12 @@ nlohmann::json SkullSession::violations(bool all) {
     version = m_face_version;
   }
   // The skull mesh does not change after the session's construction.
-  const SkullSkinViolations v = count_skull_skin_violations(m_skull.mesh, skin);
+  SkullSkinViolations v;
+  {
+    std::lock_guard lock(m_counter_mutex);
+    if (!m_counter) m_counter = std::make_unique<SkullSkinViolationCounter>(m_skull.mesh);
+    v = m_counter->count(skin);
+  }
   {
     std::lock_guard lock(m_mutex);
     if (version == m_face_version) {

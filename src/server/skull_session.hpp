@@ -24,6 +24,7 @@
 #include "craniofacial/face_expression.hpp"
 #include "craniofacial/reconstruction.hpp"
 #include "craniofacial/skull_input.hpp"
+#include "craniofacial/skull_skin_violations.hpp"
 #include "craniofacial/template_head.hpp"
 #include "server/skull_session_request.hpp"
 
@@ -113,6 +114,10 @@ class SkullSession {
   std::uint64_t m_face_version = 0;                  ///< counts the changes of the face
   std::optional<SkullSkinViolations> m_violations;   ///< of the face at m_violations_version
   std::uint64_t m_violations_version = 0;
+  /// Counts the violations off m_mutex (a count after an edit re-evaluates only the skull vertices the skin can
+  /// have swept past); built on first use, guarded by m_counter_mutex.
+  std::unique_ptr<SkullSkinViolationCounter> m_counter;
+  std::mutex m_counter_mutex;
   nlohmann::json m_timings_ms = nlohmann::json::object();
   std::atomic<std::int64_t> m_last_used_ns{0};
   mutable std::mutex m_mutex;
