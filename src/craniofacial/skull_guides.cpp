@@ -112,34 +112,47 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
   m.guides.lateral = lateral;
   m.guides.up = up;
 
-  // Nasal aperture.
+  // Nasal aperture: the lines up to rhinion, else (none opens there) up to nasion. Where the scan misses the thin
+  // nasal bones, rhinion is placed on the maxilla below the opening and only the lines up to nasion cross it.
   const Landmark* bottom = first_of(landmarks, {"ans", "ss"});
-  const Landmark* top = first_of(landmarks, {"rhi", "n"});
-  if (!bottom || !top) {
+  const Landmark* rhinion = landmarks.find("rhi");
+  const Landmark* nasion = landmarks.find("n");
+  if (!bottom || (!rhinion && !nasion)) {
     m.missing.push_back("nasal_aperture: needs ans or ss, and rhi or n");
   } else {
     const RayCaster caster(skull);
     const BoundingBox box = bounding_box(skull.positions);
     const double front_distance = (box.max - box.min).norm();
-    // The midline through the two landmarks, at their lateral mean.
-    const Vec3 centre = 0.5 * (bottom->position_mm + top->position_mm);
-    const double h0 = (bottom->position_mm - centre).dot(up) + 2.0, h1 = (top->position_mm - centre).dot(up) - 2.0;
-    const double front_a = std::max(bottom->position_mm.dot(anterior), top->position_mm.dot(anterior));
-    const double face_front = centre.dot(anterior) + front_distance - front_a;
     std::optional<ApertureLine> best;
-    double best_h = 0.0;
-    for (double h = h0; h <= h1; h += o.line_step_mm) {
-      const auto line = aperture_line(caster, centre, lateral, up, anterior, h, front_distance, face_front, o);
-      if (line && (!best || line->width > best->width)) best = line, best_h = h;
+    double best_height = 0.0, best_centre = 0.0;
+    for (const Landmark* top : {rhinion, nasion}) {
+      if (!top || best) continue;
+      // The midline through the two landmarks, at their lateral mean.
+      const Vec3 centre = 0.5 * (bottom->position_mm + top->position_mm);
+      const double h0 = (bottom->position_mm - centre).dot(up) + 2.0, h1 = (top->position_mm - centre).dot(up) - 2.0;
+      const double front_a = std::max(bottom->position_mm.dot(anterior), top->position_mm.dot(anterior));
+      const double face_front = centre.dot(anterior) + front_distance - front_a;
+      // The lowest run of lines that open, from the spine up: above it bone closes the midline (the nasal bones)
+      // or lines open again on other hollows (between the orbits), which are no part of the aperture.
+      bool opened = false;
+      for (double h = h0; h <= h1; h += o.line_step_mm) {
+        const auto line = aperture_line(caster, centre, lateral, up, anterior, h, front_distance, face_front, o);
+        if (!line && opened) break;
+        opened = opened || line.has_value();
+        if (line && (!best || line->width > best->width)) {
+          best = line;
+          best_height = centre.dot(up) + h;
+          best_centre = centre.dot(lateral);
+        }
+      }
     }
     if (!best) {
-      m.missing.push_back("nasal_aperture: no opening found between the nasal spine and rhinion");
+      m.missing.push_back("nasal_aperture: no opening found between the nasal spine and rhinion or nasion");
     } else {
-      const double c = centre.dot(lateral);
-      m.guides.nasal_aperture_left_mm = c + best->left;
-      m.guides.nasal_aperture_right_mm = c + best->right;
+      m.guides.nasal_aperture_left_mm = best_centre + best->left;
+      m.guides.nasal_aperture_right_mm = best_centre + best->right;
       m.aperture_width_mm = best->width;
-      m.aperture_height_mm = centre.dot(up) + best_h;
+      m.aperture_height_mm = best_height;
       m.measured.push_back("nasal_aperture");
     }
   }

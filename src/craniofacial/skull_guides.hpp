@@ -6,12 +6,14 @@
 /// What is measured (head directions: `lateral` toward the patient's left, `up` superior, anterior =
 /// lateral x up; from the Frankfort/midsagittal head frame when the landmarks give it, else LPS axes):
 /// - nasal aperture: rays cast from in front of the face toward the back on horizontal lines between the
-///   nasal spine (ans, else subspinale ss) and rhinion (rhi, else nasion n). Inside the aperture the first
+///   nasal spine (ans, else subspinale ss) and rhinion (rhi), or nasion (n) when no line below rhinion opens
+///   or rhinion is missing (a scan too coarse for the thin nasal bones puts rhinion on the maxilla below the
+///   opening). Inside the aperture the first
 ///   hit lies deep (the nasal cavity); on the maxilla beside it, shallow. On each line the aperture's
 ///   lateral edges are where the hit depth, going outward, comes within `edge_level` (a quarter) of the
 ///   step between the shallowest depth within `lateral_reference_mm` on that side (the front of the bone
 ///   beside the aperture) and the depth at the midline: the rim, where the bone turns into the opening;
-///   the line of greatest width gives nasal_aperture_left/right_mm
+///   the line of greatest width in the lowest run of lines that open gives nasal_aperture_left/right_mm
 ///   (lines whose midline is less than `min_aperture_depth_mm` deeper than the sides are not an opening;
 ///   depths are capped `aperture_depth_cap_mm` behind the line's front, since a ray through the aperture may
 ///   meet the back of the skull);

@@ -39,6 +39,31 @@ TEST(SkullGuides, ApertureEdgesMatchThePhantomsApertureAndTheMouthFollowsTheCani
   EXPECT_NE(m.missing[0].find("nasal_spine"), std::string::npos);
 }
 
+TEST(SkullGuides, ApertureIsFoundUpToNasionWhenRhinionLiesOnTheMaxillaBelowIt) {
+  // A scan too coarse for the nasal bones puts rhinion on the maxilla just above subspinale: no line below it
+  // opens, and the lines up to nasion find the same widest line as with the phantom's own rhinion.
+  const TemplateHead& head = test::coarse_template_head();
+  const LandmarkSet landmarks = template_skull_landmarks(head);
+  const SkullGuideMeasurement reference = measure_skull_guides(head.skull, landmarks);
+  ASSERT_TRUE(reference.guides.nasal_aperture_left_mm.has_value());
+  LandmarkSet low("low rhinion");
+  for (const Landmark& l : landmarks.landmarks()) {
+    low.add({l.name, l.name == "rhi" ? Vec3(landmarks.at("ss").position_mm + Vec3(0.0, 0.0, 1.0)) : l.position_mm});
+  }
+  const SkullGuideMeasurement m = measure_skull_guides(head.skull, low);
+  ASSERT_TRUE(m.guides.nasal_aperture_left_mm && m.guides.nasal_aperture_right_mm)
+      << (m.missing.empty() ? "" : m.missing.front());
+  EXPECT_NEAR(*m.guides.nasal_aperture_left_mm, *reference.guides.nasal_aperture_left_mm, 0.5);
+  EXPECT_NEAR(*m.guides.nasal_aperture_right_mm, *reference.guides.nasal_aperture_right_mm, 0.5);
+  // Without nasion as well, nothing opens below the low rhinion.
+  LandmarkSet no_nasion("no nasion");
+  for (const Landmark& l : low.landmarks()) {
+    if (l.name != "n") no_nasion.add(l);
+  }
+  const SkullGuideMeasurement none = measure_skull_guides(head.skull, no_nasion);
+  EXPECT_FALSE(none.guides.nasal_aperture_left_mm.has_value());
+}
+
 TEST(SkullGuides, SpineLengthIsHowFarAnsStandsInFrontOfPointA) {
   const TemplateHead& head = test::coarse_template_head();
   LandmarkSet landmarks = template_skull_landmarks(head);
