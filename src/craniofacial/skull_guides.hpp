@@ -22,10 +22,15 @@
 ///   point A; needs ans and ss;
 /// - mouth corners: at the canine / first premolar junctions, half a canine crown width
 ///   (`canine_half_width_mm`, 3.75 mm: the mean mesiodistal width of an upper canine is about 7.5 mm) lateral
-///   of the supra-canine points sC_L / sC_R over the canine eminences.
+///   of the canine eminences: at the height of the supra-canine points sC_L / sC_R, where the upper alveolar
+///   arch turns from facing forward to facing sideways (the point furthest along (lateral + anterior) / sqrt 2
+///   among the vertices within `canine_band_mm` of that height, on that side, at most `canine_depth_mm` behind
+///   the arch's front, whose normal faces that way); sC_L / sC_R themselves where no eminence is found (the
+///   reference's supra-canine points need not lie over the canines: the template's arch is narrow).
 /// Lip borders and the parting line (enamel/root transitions, incisor blades) are not measured: they stay
 /// guide values for the user.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +49,8 @@ struct SkullGuideOptions {
   double sample_step_mm = 0.5;          ///< spacing of the rays along each line
   double line_step_mm = 1.0;            ///< spacing of the horizontal lines
   double canine_half_width_mm = 3.75;
+  double canine_band_mm = 4.0;    ///< half-height of the band about the supra-canine points searched
+  double canine_depth_mm = 25.0;  ///< how far behind the arch's front the eminence may lie
 };
 
 struct SkullGuideMeasurement {
@@ -54,6 +61,7 @@ struct SkullGuideMeasurement {
   double aperture_width_mm = 0.0;     ///< of the widest line (0 when not measured)
   double aperture_height_mm = 0.0;    ///< `up` coordinate of that line
   double spine_length_mm = 0.0;       ///< ans in front of subspinale (0 when not measured)
+  std::optional<Vec3> canine_left_mm, canine_right_mm;  ///< the canine eminences found (mm), when found
 };
 
 /// Measures the guides on `skull` (closed or open mesh, mm, LPS) with its landmarks (canonical names).
