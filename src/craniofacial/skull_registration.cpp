@@ -443,6 +443,7 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   require_input(options.final_candidates >= 1, "similarity registration", "final_candidates", "must be at least 1");
   require_input(options.basin_samples >= 16, "similarity registration", "basin_samples", "must be at least 16");
   require_input(options.basin_iterations >= 1, "similarity registration", "basin_iterations", "must be at least 1");
+  require_input(options.refine_iterations >= 1, "similarity registration", "refine_iterations", "must be at least 1");
   require_input(options.stall_iterations >= 0, "similarity registration", "stall_iterations", "must not be negative");
   require_input(options.stall_tolerance >= 0.0, "similarity registration", "stall_tolerance", "must not be negative");
   require_input(options.trim_fraction >= 0.0 && options.trim_fraction < 0.9, "similarity registration", "trim_fraction",
@@ -531,7 +532,8 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   std::vector<IcpResult> candidates;
   for (std::size_t k = 0; k < further; ++k) {
     candidates.push_back(scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                    std::min(options.max_iterations, 25), plane ? &*plane : nullptr));
+                                    std::min(options.max_iterations, options.refine_iterations),
+                                    plane ? &*plane : nullptr));
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const IcpResult& a, const IcpResult& b) { return a.rms < b.rms; });
