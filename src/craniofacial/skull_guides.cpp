@@ -10,6 +10,7 @@
 #include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/head_frame.hpp"
 #include "geometry/bounding_box.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "spatial/ray_caster.hpp"
 
 namespace forensim {
@@ -96,6 +97,38 @@ std::optional<ApertureLine> aperture_line(const RayCaster& caster, const Vec3& c
   return line;
 }
 
+// The canine eminence on side `side` (+1 left, -1 right): where the upper alveolar arch turns from facing forward
+// to facing sideways. Among the vertices within canine_band_mm of height `height`, on that side of the midline
+// (lateral coordinate `mid`), at most canine_depth_mm behind the arch's front (the most anterior vertex within
+// 10 mm of the midline in the band), whose normal faces d = (side lateral + anterior) / sqrt 2 (cos > 0.5): the one
+// furthest along d. Nothing when no vertex qualifies.
+std::optional<Vec3> canine_eminence(const TriMesh& skull, const std::vector<Vec3>& normals, double height, double mid,
+                                    int side, const Vec3& lateral, const Vec3& up, const Vec3& anterior,
+                                    const SkullGuideOptions& o) {
+  double front = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : skull.positions) {
+    if (std::abs(p.dot(up) - height) <= o.canine_band_mm && std::abs(p.dot(lateral) - mid) <= 10.0) {
+      front = std::max(front, p.dot(anterior));
+    }
+  }
+  if (!std::isfinite(front)) return std::nullopt;
+  const Vec3 d = (side * lateral + anterior).normalized();
+  std::optional<Vec3> best;
+  double best_h = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < skull.positions.size(); ++i) {
+    const Vec3& p = skull.positions[i];
+    if (std::abs(p.dot(up) - height) > o.canine_band_mm || side * (p.dot(lateral) - mid) <= 0.0 ||
+        p.dot(anterior) < front - o.canine_depth_mm || normals[i].dot(d) <= 0.5) {
+      continue;
+    }
+    if (p.dot(d) > best_h) {
+      best_h = p.dot(d);
+      best = p;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkSet& landmarks, const HeadFrame* frame,
@@ -103,7 +136,7 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
   require_input(!skull.triangles.empty(), source, "skull", "the skull mesh is empty");
   require_input(o.min_aperture_depth_mm > 0 && o.aperture_depth_cap_mm > o.min_aperture_depth_mm && o.edge_level > 0 &&
                     o.edge_level < 1 && o.lateral_reference_mm > 0 && o.sample_step_mm > 0 && o.line_step_mm > 0 &&
-                    o.canine_half_width_mm >= 0,
+                    o.canine_half_width_mm >= 0 && o.canine_band_mm > 0 && o.canine_depth_mm > 0,
                 source, "options", "steps, depths and widths must be positive");
   SkullGuideMeasurement m;
   Vec3 lateral, up;
@@ -112,34 +145,47 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
   m.guides.lateral = lateral;
   m.guides.up = up;
 
-  // Nasal aperture.
+  // Nasal aperture: the lines up to rhinion, else (none opens there) up to nasion. Where the scan misses the thin
+  // nasal bones, rhinion is placed on the maxilla below the opening and only the lines up to nasion cross it.
   const Landmark* bottom = first_of(landmarks, {"ans", "ss"});
-  const Landmark* top = first_of(landmarks, {"rhi", "n"});
-  if (!bottom || !top) {
+  const Landmark* rhinion = landmarks.find("rhi");
+  const Landmark* nasion = landmarks.find("n");
+  if (!bottom || (!rhinion && !nasion)) {
     m.missing.push_back("nasal_aperture: needs ans or ss, and rhi or n");
   } else {
     const RayCaster caster(skull);
     const BoundingBox box = bounding_box(skull.positions);
     const double front_distance = (box.max - box.min).norm();
-    // The midline through the two landmarks, at their lateral mean.
-    const Vec3 centre = 0.5 * (bottom->position_mm + top->position_mm);
-    const double h0 = (bottom->position_mm - centre).dot(up) + 2.0, h1 = (top->position_mm - centre).dot(up) - 2.0;
-    const double front_a = std::max(bottom->position_mm.dot(anterior), top->position_mm.dot(anterior));
-    const double face_front = centre.dot(anterior) + front_distance - front_a;
     std::optional<ApertureLine> best;
-    double best_h = 0.0;
-    for (double h = h0; h <= h1; h += o.line_step_mm) {
-      const auto line = aperture_line(caster, centre, lateral, up, anterior, h, front_distance, face_front, o);
-      if (line && (!best || line->width > best->width)) best = line, best_h = h;
+    double best_height = 0.0, best_centre = 0.0;
+    for (const Landmark* top : {rhinion, nasion}) {
+      if (!top || best) continue;
+      // The midline through the two landmarks, at their lateral mean.
+      const Vec3 centre = 0.5 * (bottom->position_mm + top->position_mm);
+      const double h0 = (bottom->position_mm - centre).dot(up) + 2.0, h1 = (top->position_mm - centre).dot(up) - 2.0;
+      const double front_a = std::max(bottom->position_mm.dot(anterior), top->position_mm.dot(anterior));
+      const double face_front = centre.dot(anterior) + front_distance - front_a;
+      // The lowest run of lines that open, from the spine up: above it bone closes the midline (the nasal bones)
+      // or lines open again on other hollows (between the orbits), which are no part of the aperture.
+      bool opened = false;
+      for (double h = h0; h <= h1; h += o.line_step_mm) {
+        const auto line = aperture_line(caster, centre, lateral, up, anterior, h, front_distance, face_front, o);
+        if (!line && opened) break;
+        opened = opened || line.has_value();
+        if (line && (!best || line->width > best->width)) {
+          best = line;
+          best_height = centre.dot(up) + h;
+          best_centre = centre.dot(lateral);
+        }
+      }
     }
     if (!best) {
-      m.missing.push_back("nasal_aperture: no opening found between the nasal spine and rhinion");
+      m.missing.push_back("nasal_aperture: no opening found between the nasal spine and rhinion or nasion");
     } else {
-      const double c = centre.dot(lateral);
-      m.guides.nasal_aperture_left_mm = c + best->left;
-      m.guides.nasal_aperture_right_mm = c + best->right;
+      m.guides.nasal_aperture_left_mm = best_centre + best->left;
+      m.guides.nasal_aperture_right_mm = best_centre + best->right;
       m.aperture_width_mm = best->width;
-      m.aperture_height_mm = centre.dot(up) + best_h;
+      m.aperture_height_mm = best_height;
       m.measured.push_back("nasal_aperture");
     }
   }
@@ -161,16 +207,29 @@ SkullGuideMeasurement measure_skull_guides(const TriMesh& skull, const LandmarkS
     }
   }
 
-  // Mouth corners.
+  // Mouth corners: at the canine / first premolar junctions, half a canine's width lateral of the canine
+  // eminences found at the supra-canine points' height (sC_L / sC_R themselves where no eminence is found).
   const Landmark* left = landmarks.find("sC_L");
   const Landmark* right = landmarks.find("sC_R");
   if (!left || !right) {
     m.missing.push_back("mouth_corners: needs sC_L and sC_R");
   } else {
-    const double l = left->position_mm.dot(lateral), r = right->position_mm.dot(lateral);
+    double l = left->position_mm.dot(lateral), r = right->position_mm.dot(lateral);
     if (l <= r) {
       m.missing.push_back("mouth_corners: sC_L is not to the left of sC_R");
     } else {
+      const std::vector<Vec3> normals =
+          skull.normals.size() == skull.positions.size() ? skull.normals : vertex_normals(skull);
+      const double height = 0.5 * (left->position_mm + right->position_mm).dot(up);
+      const double mid = 0.5 * (l + r);
+      const auto el = canine_eminence(skull, normals, height, mid, +1, lateral, up, anterior, o);
+      const auto er = canine_eminence(skull, normals, height, mid, -1, lateral, up, anterior, o);
+      if (el && er && el->dot(lateral) > r && er->dot(lateral) < l) {
+        l = el->dot(lateral);
+        r = er->dot(lateral);
+        m.canine_left_mm = *el;
+        m.canine_right_mm = *er;
+      }
       m.guides.mouth_corner_left_mm = l + o.canine_half_width_mm;
       m.guides.mouth_corner_right_mm = r - o.canine_half_width_mm;
       m.measured.push_back("mouth_corners");

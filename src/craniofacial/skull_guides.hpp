@@ -6,12 +6,14 @@
 /// What is measured (head directions: `lateral` toward the patient's left, `up` superior, anterior =
 /// lateral x up; from the Frankfort/midsagittal head frame when the landmarks give it, else LPS axes):
 /// - nasal aperture: rays cast from in front of the face toward the back on horizontal lines between the
-///   nasal spine (ans, else subspinale ss) and rhinion (rhi, else nasion n). Inside the aperture the first
+///   nasal spine (ans, else subspinale ss) and rhinion (rhi), or nasion (n) when no line below rhinion opens
+///   or rhinion is missing (a scan too coarse for the thin nasal bones puts rhinion on the maxilla below the
+///   opening). Inside the aperture the first
 ///   hit lies deep (the nasal cavity); on the maxilla beside it, shallow. On each line the aperture's
 ///   lateral edges are where the hit depth, going outward, comes within `edge_level` (a quarter) of the
 ///   step between the shallowest depth within `lateral_reference_mm` on that side (the front of the bone
 ///   beside the aperture) and the depth at the midline: the rim, where the bone turns into the opening;
-///   the line of greatest width gives nasal_aperture_left/right_mm
+///   the line of greatest width in the lowest run of lines that open gives nasal_aperture_left/right_mm
 ///   (lines whose midline is less than `min_aperture_depth_mm` deeper than the sides are not an opening;
 ///   depths are capped `aperture_depth_cap_mm` behind the line's front, since a ray through the aperture may
 ///   meet the back of the skull);
@@ -20,10 +22,15 @@
 ///   point A; needs ans and ss;
 /// - mouth corners: at the canine / first premolar junctions, half a canine crown width
 ///   (`canine_half_width_mm`, 3.75 mm: the mean mesiodistal width of an upper canine is about 7.5 mm) lateral
-///   of the supra-canine points sC_L / sC_R over the canine eminences.
+///   of the canine eminences: at the height of the supra-canine points sC_L / sC_R, where the upper alveolar
+///   arch turns from facing forward to facing sideways (the point furthest along (lateral + anterior) / sqrt 2
+///   among the vertices within `canine_band_mm` of that height, on that side, at most `canine_depth_mm` behind
+///   the arch's front, whose normal faces that way); sC_L / sC_R themselves where no eminence is found (the
+///   reference's supra-canine points need not lie over the canines: the template's arch is narrow).
 /// Lip borders and the parting line (enamel/root transitions, incisor blades) are not measured: they stay
 /// guide values for the user.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +49,8 @@ struct SkullGuideOptions {
   double sample_step_mm = 0.5;          ///< spacing of the rays along each line
   double line_step_mm = 1.0;            ///< spacing of the horizontal lines
   double canine_half_width_mm = 3.75;
+  double canine_band_mm = 4.0;    ///< half-height of the band about the supra-canine points searched
+  double canine_depth_mm = 25.0;  ///< how far behind the arch's front the eminence may lie
 };
 
 struct SkullGuideMeasurement {
@@ -52,6 +61,7 @@ struct SkullGuideMeasurement {
   double aperture_width_mm = 0.0;     ///< of the widest line (0 when not measured)
   double aperture_height_mm = 0.0;    ///< `up` coordinate of that line
   double spine_length_mm = 0.0;       ///< ans in front of subspinale (0 when not measured)
+  std::optional<Vec3> canine_left_mm, canine_right_mm;  ///< the canine eminences found (mm), when found
 };
 
 /// Measures the guides on `skull` (closed or open mesh, mm, LPS) with its landmarks (canonical names).

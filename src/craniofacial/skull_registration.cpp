@@ -388,6 +388,23 @@ Mat3 rotation_between(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
+double rotation_angle_deg(const Mat3& a, const Mat3& b) {
+  // Through the quaternion (2 atan2(|v|, |w|)): acos of the trace loses half the digits near 0.
+  return Eigen::AngleAxisd(Mat3(a.transpose() * b)).angle() * 180.0 / M_PI;
+}
+
+std::vector<std::size_t> distinct_basins(const std::vector<Similarity>& ranked, double angle_deg,
+                                         std::size_t max_count) {
+  require_input(angle_deg >= 0.0, "similarity registration", "basin_angle_deg", "must not be negative");
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < ranked.size() && out.size() < max_count; ++i) {
+    bool known = false;
+    for (std::size_t j : out) known = known || rotation_angle_deg(ranked[j].rotation, ranked[i].rotation) <= angle_deg;
+    if (!known) out.push_back(i);
+  }
+  return out;
+}
+
 namespace {
 
 /// fit_target_symmetry on a prebuilt query of `target` (one BVH for all the fits).
@@ -424,6 +441,9 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   require_input(options.max_samples >= 16, "similarity registration", "max_samples", "must be at least 16");
   require_input(options.max_iterations >= 1, "similarity registration", "max_iterations", "must be at least 1");
   require_input(options.final_candidates >= 1, "similarity registration", "final_candidates", "must be at least 1");
+  require_input(options.basin_samples >= 16, "similarity registration", "basin_samples", "must be at least 16");
+  require_input(options.basin_iterations >= 1, "similarity registration", "basin_iterations", "must be at least 1");
+  require_input(options.refine_iterations >= 1, "similarity registration", "refine_iterations", "must be at least 1");
   require_input(options.stall_iterations >= 0, "similarity registration", "stall_iterations", "must not be negative");
   require_input(options.stall_tolerance >= 0.0, "similarity registration", "stall_tolerance", "must not be negative");
   require_input(options.trim_fraction >= 0.0 && options.trim_fraction < 0.9, "similarity registration", "trim_fraction",
@@ -504,15 +524,52 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   std::vector<std::size_t> order(runs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].rms < runs[b].rms; });
-  // The best few further on few samples, then ranked by their RMS (the lowest gives the target's plane).
+  // The best (refined_starts, all by default) further on few samples, then ranked by their RMS: after the brief
+  // runs a start may still lie between basins, and the best basin is not always among the few best brief runs.
+  const std::size_t further = std::min<std::size_t>(
+      std::max<std::size_t>({3, options.final_candidates, options.basin_candidates, options.refined_starts}),
+      order.size());
   std::vector<IcpResult> candidates;
-  for (std::size_t k = 0; k < std::min<std::size_t>(std::max<std::size_t>(3, options.final_candidates), order.size());
-       ++k) {
+  for (std::size_t k = 0; k < further; ++k) {
     candidates.push_back(scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                    std::min(options.max_iterations, 25), plane ? &*plane : nullptr));
+                                    std::min(options.max_iterations, options.refine_iterations),
+                                    plane ? &*plane : nullptr));
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const IcpResult& a, const IcpResult& b) { return a.rms < b.rms; });
+  // One candidate per basin (the lowest two-way RMS of each), at most basin_candidates: on few samples the two-way
+  // RMS of two basins (a skull pitched about the plane's normal, say) can differ by a few per cent either way.
+  std::vector<Similarity> ranked;
+  for (const IcpResult& c : candidates) ranked.push_back(c.similarity);
+  const std::vector<std::size_t> basins = distinct_basins(ranked, options.basin_angle_deg, options.basin_candidates);
+  if (basins.size() > 1) {
+    // Each basin's candidate on more samples; ranked by the reference -> target pairs (the skull-to-target fit the
+    // landmarks are carried by), which tell the basins apart where the two-way RMS does not (the reverse pairs
+    // also count parts the reference lacks: vertebrae, the CT table).
+    const std::vector<Vec3> medium = sample_vertices(reference, std::min(options.max_samples, options.basin_samples));
+    const std::vector<Vec3> medium_targets =
+        target_samples(target, surface, std::min(options.max_samples, options.basin_samples) / 2);
+    const TwoWay medium_problem{surface, reference_surface, medium, medium_targets};
+    std::vector<IcpResult> settled;
+    for (std::size_t b : basins) {
+      settled.push_back(scaled_icp(medium_problem, candidates[b].similarity, size, options,
+                                   std::min(options.max_iterations, options.basin_iterations),
+                                   plane ? &*plane : nullptr));
+    }
+    std::vector<double> forward(settled.size());
+    for (std::size_t k = 0; k < settled.size(); ++k) forward[k] = settled[k].forward_rms;
+    std::vector<std::size_t> by_forward(settled.size());
+    for (std::size_t k = 0; k < by_forward.size(); ++k) by_forward[k] = k;
+    std::stable_sort(by_forward.begin(), by_forward.end(),
+                     [&](std::size_t a, std::size_t b) { return forward[a] < forward[b]; });
+    std::vector<IcpResult> reordered;
+    for (std::size_t k : by_forward) reordered.push_back(settled[k]);
+    // The other candidates after the basins' (they may still run on all samples with final_candidates > 1).
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (std::find(basins.begin(), basins.end(), k) == basins.end()) reordered.push_back(candidates[k]);
+    }
+    candidates = std::move(reordered);
+  }
   candidates.resize(std::min(candidates.size(), options.final_candidates));
   const std::size_t lowest = 0;
   const TwoWay problem{surface, reference_surface, samples, targets};
@@ -535,8 +592,7 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     }
   }
   // Each candidate on all samples; kept: the lowest RMS of the reference -> target pairs (the fit the landmarks
-  // are carried by). Candidates of different pitch about the plane's normal can have nearly equal two-way RMS
-  // (the reverse pairs also count parts the reference lacks), while the forward pairs tell them apart.
+  // are carried by).
   IcpResult fine;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const IcpResult r = scaled_icp(problem, candidates[k].similarity, size, options, options.max_iterations,

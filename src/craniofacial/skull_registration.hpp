@@ -9,7 +9,9 @@
 ///    trimmed), started from the principal axes of both meshes (all four proper sign choices) and from the
 ///    meshes' own orientation and its axis-aligned quarter turns (scans and CTs are mostly taken square to the
 ///    head), at scale 1 under a Gaussian prior on log scale (both meshes in mm; MAP steps), each briefly, the
-///    best few further, the best trimmed RMS kept. The pairs run both ways, so that a partial target
+///    best further; then one candidate per basin (distinct rotations) on more samples, ranked by the RMS of its
+///    reference -> target pairs (the two-way RMS on few samples cannot tell a pitched skull from the right pose),
+///    the best run to convergence on all samples. The pairs run both ways, so that a partial target
 ///    does not shrink the reference into itself (one-way ICP with a free scale always gains by shrinking):
 ///    reference samples to their closest target points, kept only where the target has data (inside its
 ///    field of view, not on a cap closing a cut: scan_field_of_view.hpp), and target samples to their closest
@@ -63,6 +65,19 @@ struct SimilarityRegistrationOptions {
   /// Starts that are run on all samples after the brief runs (the best by their RMS); the one whose
   /// reference -> target pairs fit best is kept.
   std::size_t final_candidates = 1;
+  /// Distinct basins (rotations more than basin_angle_deg apart) among the brief runs' best, each carried through
+  /// basin_iterations on basin_samples reference samples and ranked by the RMS of its reference -> target pairs
+  /// (the skull-to-target fit); the best goes on to the final run. On few samples the two-way RMS cannot tell a
+  /// skull pitched about its plane's normal from the right pose (the reverse pairs also count parts the reference
+  /// lacks), while the reference -> target pairs on more samples can. 1: the two-way RMS alone decides.
+  std::size_t basin_candidates = 4;
+  /// Brief runs carried refine_iterations further on few samples before the basins are told apart, best first: on
+  /// headsq the full template's right basin starts from the 9th to 12th best brief run.
+  std::size_t refined_starts = 24;
+  int refine_iterations = 12;
+  double basin_angle_deg = 10.0;
+  std::size_t basin_samples = 1000;
+  int basin_iterations = 20;
   double stall_tolerance = 1e-4;
   bool principal_axis_starts = true;  ///< also start from the four proper principal-axis alignments
   bool quarter_turn_starts = true;    ///< also start from the 23 other axis-aligned proper rotations
@@ -128,6 +143,15 @@ struct SkullRegistration {
 Similarity register_similarity(const TriMesh& reference, const TriMesh& target,
                                const SimilarityRegistrationOptions& options = {}, double* rms_mm = nullptr,
                                int* iterations = nullptr);
+
+/// Angle of the rotation a^T b that takes rotation a onto rotation b, degrees in [0, 180].
+double rotation_angle_deg(const Mat3& a, const Mat3& b);
+
+/// Indices into `ranked` (similarities, best first) of the first of each basin: a similarity whose rotation lies
+/// within `angle_deg` of an earlier kept one's belongs to that one's basin. At most `max_count`, in rank order.
+/// Throws InputError for a negative angle.
+std::vector<std::size_t> distinct_basins(const std::vector<Similarity>& ranked, double angle_deg,
+                                         std::size_t max_count);
 
 /// The target's plane of symmetry as register_similarity finds it with reference_midsagittal: fit_symmetry_plane
 /// from the planes through the centroid square to the coordinate and principal axes, the lowest RMS kept.

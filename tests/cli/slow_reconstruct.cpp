@@ -246,9 +246,10 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarksEvaluatedAgainstItsFace) {
   }
   EXPECT_LE(e["mean_abs_mm"].get<double>(), e["rms_mm"].get<double>());
   EXPECT_LE(std::abs(e["signed_mean_mm"].get<double>()), e["mean_abs_mm"].get<double>());
-  // Measured 48 % here with the outward depth vectors and correction pairs (35 % before; literature 54-77 %);
-  // the floor catches a face that is lost again.
-  EXPECT_GT(e["within_share"].get<double>(), 0.40);
+  // Measured 48.3 % here with the outward depth vectors, the correction pairs, the registration's basins ranked
+  // by the skull-to-CT RMS and the measured aperture and canine guides (35 % before the correction pairs, 48 %
+  // before the rest; literature 54-77 %); the floor catches a face that is lost again.
+  EXPECT_GT(e["within_share"].get<double>(), 0.46);
   // A face of about 100 x 150 mm or more: the region is the face, not a patch of it.
   EXPECT_GT(e["area_mm2"].get<double>(), 15000.0);
   EXPECT_TRUE(std::filesystem::exists(out / "evaluation.png"));

@@ -32,11 +32,45 @@ TEST(SkullGuides, ApertureEdgesMatchThePhantomsApertureAndTheMouthFollowsTheCani
   EXPECT_NEAR(*m.guides.nasal_aperture_left_mm, -*m.guides.nasal_aperture_right_mm, 1.0);  // symmetric phantom
   EXPECT_NEAR(m.aperture_height_mm, -4.0, 4.0);
   ASSERT_TRUE(m.guides.mouth_corner_left_mm && m.guides.mouth_corner_right_mm);
-  EXPECT_DOUBLE_EQ(*m.guides.mouth_corner_left_mm, landmarks.at("sC_L").position_mm.x() + 3.75);
-  EXPECT_DOUBLE_EQ(*m.guides.mouth_corner_right_mm, landmarks.at("sC_R").position_mm.x() - 3.75);
+  // The canine eminences: where the phantom's alveolar bone turns from facing forward to facing sideways (its
+  // normal at 45 degrees), lateral of the phantom's supra-canine points, which lie over its narrow arch of teeth
+  // (x = 24 sin a: the canine at 9.8 mm) inside a wider bone. The mouth corners lie half a canine's width (3.75 mm)
+  // lateral of them.
+  ASSERT_TRUE(m.canine_left_mm && m.canine_right_mm);
+  EXPECT_GT(m.canine_left_mm->x(), landmarks.at("sC_L").position_mm.x());
+  EXPECT_LT(m.canine_left_mm->x(), 30.0);
+  EXPECT_NEAR(m.canine_left_mm->x(), -m.canine_right_mm->x(), 1.5);  // symmetric phantom
+  EXPECT_NEAR(m.canine_left_mm->z(), landmarks.at("sC_L").position_mm.z(), 4.0 + 1e-9);
+  EXPECT_DOUBLE_EQ(*m.guides.mouth_corner_left_mm, m.canine_left_mm->x() + 3.75);
+  EXPECT_DOUBLE_EQ(*m.guides.mouth_corner_right_mm, m.canine_right_mm->x() - 3.75);
   EXPECT_FALSE(m.guides.nasal_spine_tip.has_value());  // no ans among the template's pairs
   ASSERT_EQ(m.missing.size(), 1u);
   EXPECT_NE(m.missing[0].find("nasal_spine"), std::string::npos);
+}
+
+TEST(SkullGuides, ApertureIsFoundUpToNasionWhenRhinionLiesOnTheMaxillaBelowIt) {
+  // A scan too coarse for the nasal bones puts rhinion on the maxilla just above subspinale: no line below it
+  // opens, and the lines up to nasion find the same widest line as with the phantom's own rhinion.
+  const TemplateHead& head = test::coarse_template_head();
+  const LandmarkSet landmarks = template_skull_landmarks(head);
+  const SkullGuideMeasurement reference = measure_skull_guides(head.skull, landmarks);
+  ASSERT_TRUE(reference.guides.nasal_aperture_left_mm.has_value());
+  LandmarkSet low("low rhinion");
+  for (const Landmark& l : landmarks.landmarks()) {
+    low.add({l.name, l.name == "rhi" ? Vec3(landmarks.at("ss").position_mm + Vec3(0.0, 0.0, 1.0)) : l.position_mm});
+  }
+  const SkullGuideMeasurement m = measure_skull_guides(head.skull, low);
+  ASSERT_TRUE(m.guides.nasal_aperture_left_mm && m.guides.nasal_aperture_right_mm)
+      << (m.missing.empty() ? "" : m.missing.front());
+  EXPECT_NEAR(*m.guides.nasal_aperture_left_mm, *reference.guides.nasal_aperture_left_mm, 0.5);
+  EXPECT_NEAR(*m.guides.nasal_aperture_right_mm, *reference.guides.nasal_aperture_right_mm, 0.5);
+  // Without nasion as well, nothing opens below the low rhinion.
+  LandmarkSet no_nasion("no nasion");
+  for (const Landmark& l : low.landmarks()) {
+    if (l.name != "n") no_nasion.add(l);
+  }
+  const SkullGuideMeasurement none = measure_skull_guides(head.skull, no_nasion);
+  EXPECT_FALSE(none.guides.nasal_aperture_left_mm.has_value());
 }
 
 TEST(SkullGuides, SpineLengthIsHowFarAnsStandsInFrontOfPointA) {

@@ -118,3 +118,26 @@ TEST(SkullRegistration, BadInputIsRejected) {
   bad.non_rigid.node_count = 2;
   EXPECT_THROW(register_skull(reference, reference, bad), InputError);
 }
+
+TEST(SkullRegistration, BasinsAreTheFirstOfEachGroupOfNearbyRotations) {
+  const auto turn = [](double degrees, const Vec3& axis) {
+    return Mat3(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
+  };
+  EXPECT_NEAR(rotation_angle_deg(turn(10.0, Vec3::UnitX()), turn(44.0, Vec3::UnitX())), 34.0, 1e-9);
+  EXPECT_NEAR(rotation_angle_deg(Mat3::Identity(), turn(180.0, Vec3(1, 2, 3))), 180.0, 1e-6);
+  EXPECT_NEAR(rotation_angle_deg(turn(70.0, Vec3(0, 1, 1)), turn(70.0, Vec3(0, 1, 1))), 0.0, 1e-6);
+  // Ranked best first: a pose, a near copy of it (4 degrees off), the same skull pitched 34 degrees, a copy of that,
+  // and a half turn.
+  std::vector<Similarity> ranked(5);
+  ranked[1].rotation = turn(4.0, Vec3::UnitX());
+  ranked[2].rotation = turn(34.0, Vec3::UnitX());
+  ranked[3].rotation = turn(36.0, Vec3::UnitX()) * turn(3.0, Vec3::UnitZ());
+  ranked[4].rotation = turn(180.0, Vec3::UnitZ());
+  for (Similarity& s : ranked) s.translation = Vec3(1, 2, 3);
+  EXPECT_EQ(distinct_basins(ranked, 10.0, 10), (std::vector<std::size_t>{0, 2, 4}));
+  EXPECT_EQ(distinct_basins(ranked, 10.0, 2), (std::vector<std::size_t>{0, 2}));
+  EXPECT_EQ(distinct_basins(ranked, 0.0, 10).size(), 5u);    // every rotation its own basin
+  EXPECT_EQ(distinct_basins(ranked, 179.0, 10).size(), 2u);  // only the half turn lies further
+  EXPECT_TRUE(distinct_basins({}, 10.0, 3).empty());
+  EXPECT_THROW(distinct_basins(ranked, -1.0, 3), InputError);
+}
