@@ -103,8 +103,9 @@ struct CorotationalSettings {
   double volume_barrier_ratio = 0.5;
   ElasticPreconditioner preconditioner = ElasticPreconditioner::rest_cholesky;
   /// rest_cholesky: keep the factor in single precision (SparseSolverKind::cholmod_single): half the memory
-  /// and about half the time per preconditioner solve, the solves that dominate a shape update. The
-  /// preconditioner stays symmetric positive definite, so CG converges to the same tolerances.
+  /// and memory traffic of the preconditioner solves that dominate a shape update, two subtrees of the
+  /// factor solved side by side. The preconditioner stays symmetric positive definite, so CG converges to
+  /// the same tolerances (the same Newton and CG counts on the paper arm).
   bool single_precision_factor = true;
   double cg_tolerance = 1e-10;  ///< dynamic step: relative residual of its CG solve
   int cg_max_iterations = 2000;
