@@ -181,6 +181,23 @@ struct CorotationalSolver::Impl {
     return elastic - work;
   }
 
+  /// True when at x every live tet keeps a positive volume and, where the barrier acts (shrinking tets),
+  /// more than volume_barrier_ratio of its target volume (where the barrier's energy and force are zero).
+  bool clear_of_barrier(const Eigen::VectorXd& x) const {
+    const double r0 = settings.volume_barrier_ratio > 0.0 ? settings.volume_barrier_ratio : 0.0;
+    const double blocked = parallel_sum_chunks(0, live_tets.size(), [&](std::size_t lo, std::size_t hi) {
+      double count = 0.0;
+      for (std::size_t i = lo; i < hi; ++i) {
+        const auto t = static_cast<std::size_t>(live_tets[i]);
+        const double det = tet_field_gradient(grads[t], corners(x, t)).determinant();
+        const double target = rigid[t] != 0 ? 0.0 : r0 * std::pow(1.0 + shrinkage[t], 3);
+        if (!(det > target)) count += 1.0;
+      }
+      return count;
+    });
+    return blocked == 0.0;
+  }
+
   /// out = mass_scale M v + stiffness_scale K'(rotations) v, identity on fixed dofs (matrix-free).
   void apply_warped(double mass_scale, double stiffness_scale, const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
     parallel_for_chunks(
@@ -230,7 +247,8 @@ struct CorotationalSolver::Impl {
     for (std::ptrdiff_t k : fixed_diagonals) values[k] = 1.0;
     if (settings.preconditioner == ElasticPreconditioner::rest_cholesky) {
       if (!p.factor) {
-        p.factor = make_sparse_solver(SparseSolverKind::cholmod);
+        p.factor = make_sparse_solver(settings.single_precision_factor ? SparseSolverKind::cholmod_single
+                                                                       : SparseSolverKind::cholmod);
         p.factor->analyse(system);
       }
       p.factor->factor(system);
@@ -527,6 +545,16 @@ int CorotationalSolver::solve_quasi_static(ElasticState& state) {
         force, dx, [&](const Eigen::VectorXd& r, int) { return std::sqrt(parallel_dot(r, r)) <= limit; },
         s.settings.cg_max_iterations);
     s.cg_iterations += inner.iterations;
+    // A last step (no node moves more than the tolerance) is taken whole without the energy evaluation of
+    // the line search when it leaves every tet clear of the compression barrier (and none turned over): it
+    // changes the shape by less than the tolerance, and its forces are not needed.
+    if (dx.cwiseAbs().maxCoeff() <= s.settings.quasi_static_tolerance_mm) {
+      trial = x + dx;
+      if (s.clear_of_barrier(trial)) {
+        x.swap(trial);
+        break;
+      }
+    }
     // Backtracking on the potential energy: the warped stiffness is not the exact tangent (it lacks the
     // derivative of R), so full steps can overshoot where shrinkage pre-stresses stiff and soft tets
     // against each other. dx is a descent direction (CG on an SPD system from 0), so halving always helps.

@@ -81,6 +81,11 @@ struct DiffusionSolver::Impl {
   /// to it, in element order (empty for diagonal entries). dof_elements likewise lists each dof's elements.
   std::vector<int> entry_start, entry_sources;
   std::vector<int> dof_start, dof_elements;
+  /// The mesh edges: the value index of each edge's entry above the diagonal, and per value index its edge
+  /// (-1 on the diagonal). assemble() gathers each edge once for its two symmetric entries.
+  std::vector<std::ptrdiff_t> edge_entry;
+  std::vector<int> entry_edge;
+  std::vector<double> edge_value, edge_mass;    // scratch of assemble(): K_ab and the consistent-mass sum
   std::vector<double> element_coefficient;      // dt c D (mm^2) per element, scratch of assemble()
   std::vector<double> element_capacity_volume;  // c V per element, scratch of assemble()
   std::unique_ptr<SparseSpdSolver> solver;      // cholmod / cg_ic backends
@@ -112,6 +117,27 @@ struct DiffusionSolver::Impl {
       for (std::size_t i = 0; i < 12; ++i) {
         const auto k = static_cast<std::size_t>(entries[e][i]);
         entry_sources[static_cast<std::size_t>(fill[k]++)] = static_cast<int>(6 * e + i / 2);
+      }
+    }
+    const int* outer = system.outerIndexPtr();
+    const int* inner = system.innerIndexPtr();
+    const auto columns = static_cast<std::size_t>(system.cols());
+    entry_edge.assign(nnz, -1);
+    edge_entry.clear();
+    for (std::size_t j = 0; j < columns; ++j) {
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        if (static_cast<std::size_t>(inner[k]) < j) {
+          entry_edge[static_cast<std::size_t>(k)] = static_cast<int>(edge_entry.size());
+          edge_entry.push_back(k);
+        }
+      }
+    }
+    for (std::size_t j = 0; j < columns; ++j) {
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        if (static_cast<std::size_t>(inner[k]) > j) {
+          const std::ptrdiff_t mirror = pattern.entry(static_cast<Index>(j), inner[k]);
+          entry_edge[static_cast<std::size_t>(k)] = entry_edge[static_cast<std::size_t>(mirror)];
+        }
       }
     }
     const std::size_t dofs = dof_node.size();
@@ -169,7 +195,23 @@ struct DiffusionSolver::Impl {
     const int* inner = system.innerIndexPtr();
     double* values = system.valuePtr();
     double* mass_values = lumped ? nullptr : mass_matrix.valuePtr();
-    // Column j (= row j): K off-diagonals gathered from the element edges, K_jj = -(their sum) (rows of K sum
+    // Per mesh edge (both of its entries get the same value): K_ab gathered from the element edges.
+    edge_value.resize(edge_entry.size());
+    if (!lumped) edge_mass.resize(edge_entry.size());
+    parallel_for_chunks(0, edge_entry.size(), [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t edge = lo; edge < hi; ++edge) {
+        const auto k = static_cast<std::size_t>(edge_entry[edge]);
+        double v = 0.0, m = 0.0;
+        for (int i = entry_start[k]; i < entry_start[k + 1]; ++i) {
+          const auto src = static_cast<std::size_t>(entry_sources[static_cast<std::size_t>(i)]);
+          v += element_coefficient[src / 6] * edge_stiffness[src / 6][src % 6];
+          if (!lumped) m += element_capacity_volume[src / 6];
+        }
+        edge_value[edge] = v;
+        if (!lumped) edge_mass[edge] = m;
+      }
+    });
+    // Column j (= row j): K off-diagonals from the edges, K_jj = -(their sum) (rows of K sum
     // to zero exactly, so 1^T K u = 0 and the water balance has no assembly error), plus M.
     parallel_for_chunks(
         0, dofs,
@@ -187,19 +229,14 @@ struct DiffusionSolver::Impl {
                 diagonal = k;
                 continue;
               }
-              double v = 0.0, m = 0.0;
-              for (int i = entry_start[static_cast<std::size_t>(k)]; i < entry_start[static_cast<std::size_t>(k) + 1];
-                   ++i) {
-                const auto src = static_cast<std::size_t>(entry_sources[static_cast<std::size_t>(i)]);
-                v += element_coefficient[src / 6] * edge_stiffness[src / 6][src % 6];
-                if (!lumped) m += element_capacity_volume[src / 6];
-              }
+              const auto edge = static_cast<std::size_t>(entry_edge[static_cast<std::size_t>(k)]);
+              const double v = edge_value[edge];
               off_sum += v;
               if (lumped) {
                 values[k] = v;
               } else {
-                values[k] = v + m / 20.0;  // tet_consistent_mass off-diagonal c V / 20
-                mass_values[k] = m / 20.0;
+                values[k] = v + edge_mass[edge] / 20.0;  // tet_consistent_mass off-diagonal c V / 20
+                mass_values[k] = edge_mass[edge] / 20.0;
               }
             }
             if (lumped) {
