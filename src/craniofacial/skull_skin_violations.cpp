@@ -191,10 +191,13 @@ bool SkullSkinViolationCounter::swept_skull_vertices(const std::vector<Vec3>& ol
   constexpr std::size_t grain = 256;
   std::vector<std::vector<std::uint32_t>> found((n + grain - 1) / grain);
   const std::vector<Vec3>& skull = m_skull.positions;
-  parallel_for_chunks(
-      0, n,
-      [&](std::size_t begin, std::size_t end) {
-        std::vector<std::uint32_t>& mine = found[begin / grain];
+  // Fixed blocks of `grain` triangles, one list each: the chunks of parallel_for_chunks are at most `grain` long
+  // but not aligned to it, so two chunks could share a list.
+  parallel_for(
+      0, found.size(),
+      [&](std::size_t block) {
+        std::vector<std::uint32_t>& mine = found[block];
+        const std::size_t begin = block * grain, end = std::min(n, begin + grain);
         for (std::size_t t = begin; t < end; ++t) {
           const Tri& tri = m_skin_triangles[t];
           const Vec3& a = old[static_cast<std::size_t>(tri[0])];
@@ -218,7 +221,7 @@ bool SkullSkinViolationCounter::swept_skull_vertices(const std::vector<Vec3>& ol
           }
         }
       },
-      grain);
+      1);
   out.clear();
   for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
   std::sort(out.begin(), out.end());
