@@ -78,8 +78,10 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 }
 
 std::optional<ClosestPoint> closest_point(const TriMesh& mesh, const Vec3& point, double max_distance) {
-  require_input(point.allFinite(), "closest point query", "point", "query point is not finite");
-  require_input(max_distance >= 0.0, "closest point query", "max_distance", "max_distance must be >= 0");
+  // Plain tests first: this runs once per query point, and require_input's string arguments would be built
+  // on every call.
+  if (!point.allFinite()) throw InputError("closest point query", "point", "query point is not finite");
+  if (!(max_distance >= 0.0)) throw InputError("closest point query", "max_distance", "max_distance must be >= 0");
   std::optional<ClosestPoint> best;
   double best_d2 = std::isinf(max_distance) ? max_distance : max_distance * max_distance;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -203,8 +205,10 @@ std::size_t ClosestPointQuery::triangle_count() const {
 }
 
 std::optional<ClosestPoint> ClosestPointQuery::query(const Vec3& point, double max_distance) const {
-  require_input(point.allFinite(), "closest point query", "point", "query point is not finite");
-  require_input(max_distance >= 0.0, "closest point query", "max_distance", "max_distance must be >= 0");
+  // Plain tests first: this runs once per query point, and require_input's string arguments would be built
+  // on every call.
+  if (!point.allFinite()) throw InputError("closest point query", "point", "query point is not finite");
+  if (!(max_distance >= 0.0)) throw InputError("closest point query", "max_distance", "max_distance must be >= 0");
   return m_impl->query(point, max_distance);
 }
 
@@ -212,8 +216,8 @@ std::vector<std::optional<ClosestPoint>> ClosestPointQuery::query_batch(const st
                                                                         double max_distance) const {
   require_input(max_distance >= 0.0, "closest point query", "max_distance", "max_distance must be >= 0");
   for (std::size_t i = 0; i < points.size(); ++i) {
-    require_input(points[i].allFinite(), "closest point query", "point " + std::to_string(i),
-                  "query point is not finite");
+    if (!points[i].allFinite())
+      throw InputError("closest point query", "point " + std::to_string(i), "query point is not finite");
   }
   std::vector<std::optional<ClosestPoint>> results(points.size());
   parallel_for(
@@ -231,9 +235,10 @@ std::vector<std::optional<ClosestPoint>> ClosestPointQuery::query_batch_bounded(
       upper_bounds.size() == points.size(), "closest point query", "upper_bounds",
       "has " + std::to_string(upper_bounds.size()) + " entries for " + std::to_string(points.size()) + " points");
   for (std::size_t i = 0; i < points.size(); ++i) {
-    require_input(points[i].allFinite(), "closest point query", "point " + std::to_string(i),
-                  "query point is not finite");
-    require_input(upper_bounds[i] >= 0.0, "closest point query", "upper bound " + std::to_string(i), "must be >= 0");
+    if (!points[i].allFinite())
+      throw InputError("closest point query", "point " + std::to_string(i), "query point is not finite");
+    if (!(upper_bounds[i] >= 0.0))
+      throw InputError("closest point query", "upper bound " + std::to_string(i), "must be >= 0");
   }
   const double slack = 1e-9 * m_impl->scene.extent() + 1e-12;
   std::vector<std::optional<ClosestPoint>> results(points.size());
