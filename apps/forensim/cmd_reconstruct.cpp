@@ -225,6 +225,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     detection_options.registration.similarity.target_view = skull.field_of_view;
     detection = detect_template_landmarks(head, skull.mesh, detection_options);
     timings.add("landmark detection", watch.lap());
+    for (const auto& [name, reason] : detection->left_out)
+      std::printf("landmark %s left out: %s\n", name.c_str(), reason.c_str());
     std::size_t unseen = 0;
     for (const DetectedLandmark& d : detection->details) unseen += d.in_view ? 0 : 1;
     if (unseen > 0) {
@@ -493,6 +495,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                                             {"similarity_rms_mm", reg.similarity_rms_mm},
                                             {"non_rigid_rms_mm", reg.rms_mm},
                                             {"landmarks", details}};
+    nlohmann::json left_out = nlohmann::json::array();
+    for (const auto& [name, reason] : detection->left_out) left_out.push_back({{"name", name}, {"reason", reason}});
+    provenance["landmarks"]["detection"]["left_out"] = left_out;
   }
   provenance["guides"] = guides_record;
   if (job.measure_guides) provenance["guides_measured"] = measured_guides;
@@ -633,8 +638,8 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
           ->check(CLI::IsMember({"full", "coarse"}));
       sub->add_option("--axes", j.axes,
-                      "Frame of the skull for the pictures: lps, yup or auto (the detected head frame with "
-                      "--landmarks auto, else lps)")
+                      "Frame of the skull for the pictures: auto (default: the detected head frame with "
+                      "--landmarks auto, else lps), lps or yup")
           ->check(CLI::IsMember({"lps", "yup", "auto"}));
       sub->add_option("--seed", j.seed, "Seed of the procedural skin maps");
       sub->add_option("--texture-size", j.texture_size, "Skin map resolution (0 = none)")->check(CLI::Range(0, 8192));

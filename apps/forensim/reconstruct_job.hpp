@@ -19,8 +19,9 @@
 ///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
-///   axes             "lps" (default), "yup" or "auto" (the detected head frame with automatic landmarks):
-///                    the skull's frame, for the pictures
+///   axes             "auto" (default: the detected head frame with automatic landmarks, else lps), "lps" or
+///                    "yup": the skull's frame, for the pictures (a CT stored feet-up or tilted comes out upright
+///                    with auto)
 ///   seed             seed of the procedural skin maps
 ///   texture_size     skin map resolution (0 = no maps)
 ///   picture_size, samples  renders (picture_size 0 = no renders)
@@ -63,7 +64,7 @@ struct ReconstructJob {
   bool has_guides = false;
   bool interpolated_landmarks = true;
   std::string template_detail = "full";
-  std::string axes = "lps";
+  std::string axes = "auto";
   std::uint64_t seed = 1;
   int texture_size = 1024;
   int picture_size = 512;

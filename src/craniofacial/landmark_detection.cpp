@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
@@ -341,9 +343,29 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
       },
       1);
 
+  // Nasal bones the scan did not resolve: nasion to rhinion crosses the aperture, and mn and rhi lie on no bone.
+  std::vector<char> left_out(ls.size(), 0);
+  const auto n_index = reference_landmarks.index_of("n");
+  const auto rhi_index = reference_landmarks.index_of("rhi");
+  if (options.nasal_bone_gap_mm > 0.0 && n_index && rhi_index && in_view[*n_index] && in_view[*rhi_index]) {
+    const double gap = nasal_bone_gap_mm(target, refined[*n_index].position_mm, refined[*rhi_index].position_mm);
+    if (gap > options.nasal_bone_gap_mm) {
+      for (const char* name : {"mn", "rhi"}) {
+        const auto j = reference_landmarks.index_of(name);
+        if (!j) continue;
+        left_out[*j] = 1;
+        result.left_out.emplace_back(name, fmt::format("the scan shows no nasal bones: the midline from nasion to the "
+                                                       "rhinion found runs {:.1f} mm clear of the skull (more than "
+                                                       "{:.1f} mm), across the nasal aperture",
+                                                       gap, options.nasal_bone_gap_mm));
+      }
+    }
+  }
+
   const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
   result.landmarks = LandmarkSet("detected");
   for (std::size_t i = 0; i < ls.size(); ++i) {
+    if (left_out[i]) continue;
     DetectedLandmark d;
     d.name = ls[i].name;
     d.rule = defs[i].rule;
@@ -373,6 +395,18 @@ static LandmarkDetection detect_with_frame(const TriMesh& reference, const Landm
     result.details.push_back(d);
   }
   return result;
+}
+
+double nasal_bone_gap_mm(const TriMesh& mesh, const Vec3& nasion, const Vec3& rhinion) {
+  require_input(!mesh.positions.empty(), "nasal bone check mesh", "", "the mesh has no vertices");
+  double gap = 0.0;
+  for (int k = 1; k <= 9; ++k) {
+    const Vec3 p = nasion + (0.1 * k) * (rhinion - nasion);
+    double nearest2 = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : mesh.positions) nearest2 = std::min(nearest2, (v - p).squaredNorm());
+    gap = std::max(gap, std::sqrt(nearest2));
+  }
+  return gap;
 }
 
 LandmarkSet locate_landmarks(const TriMesh& skull, const HeadFrame& frame) {

@@ -49,7 +49,17 @@ struct LandmarkDetectionOptions {
   double residual_scale_mm = 1.5;          ///< residual at which the residual term of the confidence is 1/2
   double symmetry_scale_mm = 4.0;          ///< left/right or off-plane disagreement at which that term is 1/2
   double transfer_definition_score = 0.6;  ///< definition term of sites refined by transfer only
+  /// The scan shows no nasal bones when the midsagittal segment from the refined nasion to the refined rhinion
+  /// runs farther than this from the skull at some point (a CT too coarse for the thin nasal bones: rhinion is then
+  /// found on the maxilla below the aperture and the segment crosses the opening); mn and rhi are left out
+  /// (LandmarkDetection::left_out), since the bone they are measured from is missing. 0 = never.
+  double nasal_bone_gap_mm = 4.0;
 };
+
+/// Distance of the farthest of nine points spread along the segment from `nasion` to `rhinion` (at 0.1, 0.2, ...,
+/// 0.9) to the nearest vertex of `mesh`, mm: small where the nasal bones join the two, large where the segment
+/// crosses the nasal aperture. Throws InputError for a mesh without vertices.
+double nasal_bone_gap_mm(const TriMesh& mesh, const Vec3& nasion, const Vec3& rhinion);
 
 /// Refinement of one landmark by its definition.
 struct RefinedLandmark {
@@ -87,6 +97,8 @@ struct DetectedLandmark {
 struct LandmarkDetection {
   LandmarkSet landmarks;                  ///< source detected, confidence per landmark
   std::vector<DetectedLandmark> details;  ///< same order as landmarks
+  /// Reference landmarks not placed, each with the reason ("mn": "the scan shows no nasal bones ...").
+  std::vector<std::pair<std::string, std::string>> left_out;
   SkullRegistration registration;
   HeadFrame frame;  ///< the target's head frame
 };
@@ -96,7 +108,8 @@ struct LandmarkDetection {
 /// the target), refine each landmark by its definition, then score it. Confidence = (c_res c_def c_sym)^(1/3) with
 /// c_res = 1 / (1 + (residual / residual_scale)^2), c_def the sharpness (transfer_definition_score for transfer
 /// sites) and c_sym = 1 / (1 + (symmetry error / symmetry_scale)^2). Landmarks transferred outside
-/// options.registration.similarity.target_view are not refined (DetectedLandmark::in_view). Throws InputError naming
+/// options.registration.similarity.target_view are not refined (DetectedLandmark::in_view). Where the target shows no
+/// nasal bones (LandmarkDetectionOptions::nasal_bone_gap_mm), mn and rhi are left out. Throws InputError naming
 /// "reference landmarks" when the set is empty or lacks the Frankfort landmarks, and the registration's errors.
 LandmarkDetection detect_landmarks(const TriMesh& reference, const LandmarkSet& reference_landmarks,
                                    const TriMesh& target, const LandmarkDetectionOptions& options = {});
