@@ -236,6 +236,11 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarksEvaluatedAgainstItsFace) {
   }
   EXPECT_NE(std::find(unseen.begin(), unseen.end(), "v"), unseen.end());
   EXPECT_EQ(std::find(unseen.begin(), unseen.end(), "n"), unseen.end());
+  // At 3.2 mm voxels the CT shows no nasal bones: mn and rhi are left out, with the reason.
+  ASSERT_TRUE(detection.contains("left_out"));
+  std::vector<std::string> left_out;
+  for (const auto& l : detection["left_out"]) left_out.push_back(l["name"]);
+  EXPECT_EQ(left_out, (std::vector<std::string>{"mn", "rhi"}));
   // The evaluation against the CT's own face.
   const auto e = nlohmann::json::parse(read_file(out / "evaluation.json"));
   std::cout << "headsq evaluation: mean " << e["mean_abs_mm"] << " mm, RMS " << e["rms_mm"] << " mm, signed mean "
@@ -246,9 +251,10 @@ TEST(SlowReconstructCli, RealCtWithAutomaticLandmarksEvaluatedAgainstItsFace) {
   }
   EXPECT_LE(e["mean_abs_mm"].get<double>(), e["rms_mm"].get<double>());
   EXPECT_LE(std::abs(e["signed_mean_mm"].get<double>()), e["mean_abs_mm"].get<double>());
-  // Measured 48.3 % here with the outward depth vectors, the correction pairs, the registration's basins ranked
-  // by the skull-to-CT RMS and the measured aperture and canine guides (35 % before the correction pairs, 48 %
-  // before the rest; literature 54-77 %); the floor catches a face that is lost again.
+  // Measured 46.5 % here (coarse template; the full one gives 49.9 %) with the outward depth vectors, the
+  // correction pairs, the registration's basins ranked by the skull-to-CT RMS, the measured aperture and canine
+  // guides and the nasal landmarks left out (35 % before the correction pairs; literature 54-77 %); the floor
+  // catches a face that is lost again.
   EXPECT_GT(e["within_share"].get<double>(), 0.46);
   // A face of about 100 x 150 mm or more: the region is the face, not a patch of it.
   EXPECT_GT(e["area_mm2"].get<double>(), 15000.0);
