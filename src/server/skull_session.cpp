@@ -87,6 +87,9 @@ SkullSession::SkullSession(std::string id, std::shared_ptr<const TemplateHead> h
     m_detection = {{"similarity_scale", detection.registration.similarity.scale},
                    {"similarity_rms_mm", detection.registration.similarity_rms_mm},
                    {"non_rigid_rms_mm", detection.registration.rms_mm}};
+    nlohmann::json left_out = nlohmann::json::array();
+    for (const auto& [name, reason] : detection.left_out) left_out.push_back({{"name", name}, {"reason", reason}});
+    m_detection["left_out"] = left_out;
     m_timings_ms["detection"] = ms(watch.lap());
   } else {
     landmarks = as_bad_request("/landmarks", [&] { return read_landmarks(request.landmarks); });
