@@ -234,6 +234,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull.mesh = head.skull;
     skull.source = "built-in template skull (head phantom)";
     skull.kind = "builtin";
+    if (landmark_mode == "auto") detect();
   } else if (landmark_mode == "auto") {
     // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
     // muscles are built (the skin's remeshing runs on one thread), and the halves are joined after.
@@ -265,7 +266,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (detection) {
     timings.add("landmark detection", detection_s);
     if (completion) timings.add("skull completion", completion_s);
-    timings.add("template, skull and landmark detection (side by side)", watch.lap());
+    timings.add(
+        builtin_skull ? "template and landmark detection" : "template, skull and landmark detection (side by side)",
+        watch.lap());
   } else {
     timings.add("template and skull (side by side)", watch.lap());
   }
