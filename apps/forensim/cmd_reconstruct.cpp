@@ -206,39 +206,73 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     }
     skull_s = part.seconds();
   };
-  if (builtin_skull) {
-    build_template();
-    skull.mesh = head.skull;
-    skull.source = "built-in template skull (head phantom)";
-    skull.kind = "builtin";
-  } else {
-    parallel_for(
-        0, 2, [&](std::size_t part) { part == 0 ? build_template() : read_skull(); }, 1);
-  }
-  timings.add("template", template_s);
-  timings.add("skull", skull_s);
-  timings.add("template and skull (side by side)", watch.lap());
   std::optional<LandmarkDetection> detection;
   std::optional<SkullCompletion> completion;
-  if (landmark_mode == "auto") {
+  // Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
+  // scan did not see lie on the registered template, whose missing part completes the skull.
+  double detection_s = 0.0, completion_s = 0.0;
+  const auto detect = [&] {
+    Stopwatch part;
     LandmarkDetectionOptions detection_options;
     detection_options.registration.similarity.target_view = skull.field_of_view;
     detection = detect_template_landmarks(head, skull.mesh, detection_options);
-    timings.add("landmark detection", watch.lap());
-    for (const auto& [name, reason] : detection->left_out)
-      std::printf("landmark %s left out: %s\n", name.c_str(), reason.c_str());
+    detection_s = part.lap();
     std::size_t unseen = 0;
     for (const DetectedLandmark& d : detection->details) unseen += d.in_view ? 0 : 1;
     if (unseen > 0) {
-      // Landmarks the scan did not see lie on the registered template: its missing part completes the skull.
       completion = complete_skull(skull.mesh, skull.field_of_view, head.skull, detection->registration);
       skull.mesh = completion->mesh;
       skull.notes.push_back(fmt::format(
           "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
           "triangles of the cut dropped)",
           unseen, completion->reference_triangles, completion->cap_triangles));
-      timings.add("skull completion", watch.lap());
+      completion_s = part.lap();
     }
+  };
+  if (builtin_skull) {
+    build_template();
+    skull.mesh = head.skull;
+    skull.source = "built-in template skull (head phantom)";
+    skull.kind = "builtin";
+    if (landmark_mode == "auto") detect();
+  } else if (landmark_mode == "auto") {
+    // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
+    // muscles are built (the skin's remeshing runs on one thread), and the halves are joined after.
+    TemplateSkin skin;
+    double skull_part_s = 0.0;
+    parallel_for(
+        0, 2,
+        [&](std::size_t part) {
+          if (part == 0) {
+            skin = make_template_skin(template_options);
+            return;
+          }
+          read_skull();
+          Stopwatch watch_skull;
+          head = make_template_skull(template_options);
+          skull_part_s = watch_skull.seconds();
+          detect();
+        },
+        1);
+    Stopwatch join;
+    head = join_template_head(std::move(head), std::move(skin));
+    template_s = head.seconds_skin + head.seconds_atlas + skull_part_s + join.seconds();
+  } else {
+    parallel_for(
+        0, 2, [&](std::size_t part) { part == 0 ? build_template() : read_skull(); }, 1);
+  }
+  timings.add("template", template_s);
+  timings.add("skull", skull_s);
+  if (detection) {
+    for (const auto& [name, reason] : detection->left_out)
+      std::printf("landmark %s left out: %s\n", name.c_str(), reason.c_str());
+    timings.add("landmark detection", detection_s);
+    if (completion) timings.add("skull completion", completion_s);
+    timings.add(
+        builtin_skull ? "template and landmark detection" : "template, skull and landmark detection (side by side)",
+        watch.lap());
+  } else {
+    timings.add("template and skull (side by side)", watch.lap());
   }
   const LandmarkSet skull_landmarks_in = file_landmarks ? *file_landmarks
                                          : detection    ? detection->landmarks

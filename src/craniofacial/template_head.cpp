@@ -479,7 +479,9 @@ TemplateHeadOptions template_head_options(const std::string& detail) {
   return o;
 }
 
-TemplateHead make_template_head(const TemplateHeadOptions& options) {
+namespace {
+
+void check_options(const TemplateHeadOptions& options) {
   const char* const source = "template head options";
   require_input(options.skin_voxel_mm >= 0.5 && options.skin_voxel_mm <= 5.0, source, "skin_voxel_mm",
                 "must be in [0.5, 5], got " + std::to_string(options.skin_voxel_mm));
@@ -491,86 +493,116 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
                 "must be in [0, 20]");
   require_input(options.uv_resolution >= 64 && options.uv_resolution <= 16384, source, "uv_resolution",
                 "must be in [64, 16384]");
+}
+
+}  // namespace
+
+TemplateHead make_template_skull(const TemplateHeadOptions& options) {
+  check_options(options);
   Stopwatch watch;
   TemplateHead head;
+  head.skull = skull_only(phantom_surface(SkullRegion(), PhantomSurface::bone, options.skull_voxel_mm));
+  compute_normals(head.skull);
+  // The skull landmarks: the definitions on the phantom's bone, moved onto the skull mesh (their skin points come
+  // with the skin, join_template_head).
+  const ClosestPointQuery on_skull(head.skull);
+  for (const PhantomSkullLandmark& l : head_phantom_skull_landmarks()) {
+    TemplateLandmarkPair pair;
+    pair.bone_name = l.bone_name;
+    pair.skin_name = l.skin_name;
+    pair.midline = l.midline;
+    pair.skull = on_skull.query(l.position)->point;
+    pair.skull_normal = l.normal;
+    head.landmarks.push_back(pair);
+  }
+  head.seconds_skull = watch.seconds();
+  head.seconds = head.seconds_skull;
+  return head;
+}
+
+TemplateSkin make_template_skin(const TemplateHeadOptions& options) {
+  check_options(options);
+  Stopwatch watch;
+  TemplateSkin out;
+  out.surface =
+      keep_largest_components(remesh_isotropic(phantom_surface(phantom(), PhantomSurface::skin, options.skin_voxel_mm),
+                                               options.skin_edge_mm, options.remesh_iterations),
+                              1);
+  compute_normals(out.surface);
+  out.seconds_surface = watch.lap();
+  out.skin = out.surface;
+  if (options.uv_atlas) {
+    // The UV atlas cuts the skin along its seams.
+    out.triangle_chart = assign_charts(out.surface);
+    const auto nb = triangle_edge_neighbours(out.surface);
+    for (int round = 0; round < 50 && clean_charts(nb, out.triangle_chart) > 0; ++round) {
+    }
+    UvAtlasOptions atlas_options;
+    atlas_options.resolution = options.uv_resolution;
+    UvAtlas atlas = make_uv_atlas(out.surface, out.triangle_chart, atlas_options);
+    out.skin = std::move(atlas.mesh);
+    out.uv_l2_stretch = atlas.stats.l2_stretch;
+    out.uv_overlap_free = atlas.stats.overlap_free;
+  }
+  out.chart_names = {"top", "bottom", "face", "left", "right", "back"};
+  out.muscles = head_phantom_muscle_layouts(options.muscle_fibres, options.muscle_samples);
+  const ClosestPointQuery on_skin(out.skin);
+  for (MuscleLayout& m : out.muscles) {
+    for (Vec3& p : m.grid) p = on_skin.query(p)->point;
+  }
+  out.seconds_atlas = watch.lap();
+  return out;
+}
+
+TemplateHead join_template_head(TemplateHead skull_part, TemplateSkin skin) {
+  require_input(!skull_part.skull.triangles.empty() && !skull_part.landmarks.empty(), "template head", "skull part",
+                "has no skull or landmarks (make_template_skull)");
+  require_input(!skin.surface.triangles.empty(), "template head", "skin part", "has no skin (make_template_skin)");
+  Stopwatch watch;
+  TemplateHead head = std::move(skull_part);
+  // The skin where each skull landmark's normal meets it, on the skin as remeshed (before the atlas's cuts).
+  const RayCaster skin_rays(skin.surface);
+  for (TemplateLandmarkPair& pair : head.landmarks) {
+    const auto hit = skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, 80.0);
+    if (!hit) throw NumericError("template head: the normal at skull landmark " + pair.bone_name + " misses the skin");
+    pair.skin = hit->point;
+    pair.depth_mm = hit->t;
+  }
+  const ClosestPointQuery skin_points(skin.surface);
+  head.skin_landmarks.clear();
+  for (TemplateSkinLandmark l : phantom_skin_landmarks()) {
+    l.position = skin_points.query(l.position)->point;
+    head.skin_landmarks.push_back(l);
+  }
+  head.skin = std::move(skin.skin);
+  head.triangle_chart = std::move(skin.triangle_chart);
+  head.chart_names = std::move(skin.chart_names);
+  head.uv_l2_stretch = skin.uv_l2_stretch;
+  head.uv_overlap_free = skin.uv_overlap_free;
+  head.muscles = std::move(skin.muscles);
+  head.seconds_skin = skin.seconds_surface;
+  head.seconds_atlas = skin.seconds_atlas;
+  head.seconds_landmarks = watch.seconds();
+  return head;
+}
+
+TemplateHead make_template_head(const TemplateHeadOptions& options) {
+  check_options(options);
+  Stopwatch watch;
+  TemplateHead skull_part;
+  TemplateSkin skin;
   // The skin and the skull are independent: built side by side (the skin's remeshing runs on one thread).
   parallel_for(
       0, 2,
       [&](std::size_t part) {
-        Stopwatch part_watch;
         if (part == 0) {
-          head.skin = keep_largest_components(
-              remesh_isotropic(phantom_surface(phantom(), PhantomSurface::skin, options.skin_voxel_mm),
-                               options.skin_edge_mm, options.remesh_iterations),
-              1);
-          compute_normals(head.skin);
-          head.seconds_skin = part_watch.seconds();
+          skin = make_template_skin(options);
         } else {
-          head.skull = skull_only(phantom_surface(SkullRegion(), PhantomSurface::bone, options.skull_voxel_mm));
-          compute_normals(head.skull);
-          head.seconds_skull = part_watch.seconds();
+          skull_part = make_template_skull(options);
         }
       },
       1);
-  watch.lap();
-
-  // The landmarks on the skin as remeshed, and beside them the UV atlas (which cuts the skin along its seams).
-  const TriMesh skin = head.skin;
-  parallel_for(
-      0, 2,
-      [&](std::size_t part) {
-        Stopwatch part_watch;
-        if (part == 0) {
-          // Landmark pairs: the definitions on the phantom's bone, moved onto the skull mesh, and the skin where
-          // the normal meets it.
-          const ClosestPointQuery on_skull(head.skull);
-          const RayCaster skin_rays(skin);
-          for (const PhantomSkullLandmark& l : head_phantom_skull_landmarks()) {
-            TemplateLandmarkPair pair;
-            pair.bone_name = l.bone_name;
-            pair.skin_name = l.skin_name;
-            pair.midline = l.midline;
-            pair.skull = on_skull.query(l.position)->point;
-            pair.skull_normal = l.normal;
-            const auto hit = skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, 80.0);
-            if (!hit) {
-              throw NumericError("template head: the normal at skull landmark " + l.bone_name + " misses the skin");
-            }
-            pair.skin = hit->point;
-            pair.depth_mm = hit->t;
-            head.landmarks.push_back(pair);
-          }
-          const ClosestPointQuery skin_points(skin);
-          for (TemplateSkinLandmark l : phantom_skin_landmarks()) {
-            l.position = skin_points.query(l.position)->point;
-            head.skin_landmarks.push_back(l);
-          }
-          head.seconds_landmarks = part_watch.seconds();
-        } else {
-          if (options.uv_atlas) {
-            head.triangle_chart = assign_charts(skin);
-            const auto nb = triangle_edge_neighbours(skin);
-            for (int round = 0; round < 50 && clean_charts(nb, head.triangle_chart) > 0; ++round) {
-            }
-            UvAtlasOptions atlas_options;
-            atlas_options.resolution = options.uv_resolution;
-            UvAtlas atlas = make_uv_atlas(skin, head.triangle_chart, atlas_options);
-            head.skin = std::move(atlas.mesh);
-            head.uv_l2_stretch = atlas.stats.l2_stretch;
-            head.uv_overlap_free = atlas.stats.overlap_free;
-          }
-          head.seconds_atlas = part_watch.seconds();
-        }
-      },
-      1);
-  head.chart_names = {"top", "bottom", "face", "left", "right", "back"};
-  watch.lap();
-
-  head.muscles = head_phantom_muscle_layouts(options.muscle_fibres, options.muscle_samples);
-  const ClosestPointQuery on_skin(head.skin);
-  for (MuscleLayout& m : head.muscles) {
-    for (Vec3& p : m.grid) p = on_skin.query(p)->point;
-  }
+  TemplateHead head = join_template_head(std::move(skull_part), std::move(skin));
   head.seconds = watch.seconds();
   return head;
 }

@@ -68,8 +68,22 @@ struct TemplateHead {
   std::vector<TemplateLandmarkPair> landmarks;
   std::vector<TemplateSkinLandmark> skin_landmarks;
   std::vector<MuscleLayout> muscles;  ///< the 24 muscles, grids on the skin
-  double seconds = 0.0;               ///< time to build, and its stages (skin beside skull, landmarks beside atlas):
+  /// Seconds to build, and its stages: the skin surface, then its atlas and muscles (make_template_skin), beside the
+  /// skull with its landmarks (make_template_skull), then the skin points of the landmarks (join_template_head).
+  double seconds = 0.0;
   double seconds_skin = 0.0, seconds_skull = 0.0, seconds_landmarks = 0.0, seconds_atlas = 0.0;
+};
+
+/// The skin half of the template head (make_template_skin): independent of the skull.
+struct TemplateSkin {
+  TriMesh surface;                       ///< the remeshed skin before the atlas's cuts (landmarks are found on it)
+  TriMesh skin;                          ///< as TemplateHead::skin (with UVs when options.uv_atlas)
+  std::vector<int> triangle_chart;       ///< as TemplateHead
+  std::vector<std::string> chart_names;  ///< as TemplateHead
+  double uv_l2_stretch = 0.0;
+  bool uv_overlap_free = false;
+  std::vector<MuscleLayout> muscles;  ///< on `skin`
+  double seconds_surface = 0.0, seconds_atlas = 0.0;
 };
 
 /// The template options of a detail level, as `forensim reconstruct --template-detail` and the skull editor
@@ -81,6 +95,16 @@ TemplateHeadOptions template_head_options(const std::string& detail);
 /// skull_voxel_mm in [0.5, 5], skin_edge_mm in [skin_voxel_mm / 2, 15]) and NumericError if a landmark
 /// cannot be found on the phantom.
 TemplateHead make_template_head(const TemplateHeadOptions& options = {});
+
+/// make_template_head in three steps, so that work needing only the skull (automatic landmark detection) may run
+/// while the skin is built: make_template_skull gives a head with the skull and the landmark pairs' skull side
+/// (bone_name, skin_name, skull, skull_normal, midline; skin, depth_mm, the skin and its landmarks still empty);
+/// make_template_skin the skin, its atlas and the muscles; join_template_head the pairs' skin points and the
+/// skin landmarks. join_template_head(make_template_skull(o), make_template_skin(o)) equals make_template_head(o).
+/// Throw as make_template_head; join_template_head throws InputError for an empty part.
+TemplateHead make_template_skull(const TemplateHeadOptions& options = {});
+TemplateSkin make_template_skin(const TemplateHeadOptions& options = {});
+TemplateHead join_template_head(TemplateHead skull_part, TemplateSkin skin);
 
 /// Index of the pair whose skin_name or (unique) bone_name is `name`, or -1. Throws InputError when a bone
 /// name matches several pairs (ecm2_L pairs with sM2'_L and iM2'_L): use the skin name then.

@@ -14,6 +14,52 @@ Vec3 mirrored(const Vec3& p) {
 
 constexpr double neck_bottom_z = -150.0;
 
+/// The teeth (in mirrored coordinates) and the cervical spine: primitives joined by a plain minimum, so a group
+/// whose box lies farther than the distance so far cannot change it and is skipped (bone_distance runs millions of
+/// times when the template's skull is sampled). Each box bounds its group's shapes: a rounded box's distance
+/// and a capsule's (ra + (rb - ra) h, at most the larger radius, below the distance to the axis) are at least
+/// the distance to a box holding the shape.
+struct MinGroups {
+  static constexpr int tooth_count = 8;
+  Vec3 tooth_centre[2][tooth_count];
+  BoundingBox teeth, spine;
+
+  MinGroups() {
+    const Vec3 tooth_half(3.2, 3.0, 4.2);
+    for (int row = 0; row < 2; ++row) {
+      const double z = row == 0 ? -39.0 : -47.0;
+      for (int t = 0; t < tooth_count; ++t) {
+        const double angle = (t + 0.5) / 8.0 * 1.35;  // radians from the midline
+        tooth_centre[row][t] = Vec3(std::sin(angle) * 24.0, -78.0 + (1.0 - std::cos(angle)) * 34.0, z);
+        teeth.extend(tooth_centre[row][t] - tooth_half);
+        teeth.extend(tooth_centre[row][t] + tooth_half);
+      }
+    }
+    for (int v = 0; v < 7; ++v) {
+      const double z = -34.0 - v * 16.0;
+      spine.extend(Vec3(0, 24 + v * 0.8, z) - Vec3(9, 8, 6.2));
+      spine.extend(Vec3(0, 24 + v * 0.8, z) + Vec3(9, 8, 6.2));
+      spine.extend(Vec3(0, 30 + v * 0.8, z) - Vec3::Constant(3.5));
+      spine.extend(Vec3(0, 30 + v * 0.8, z) + Vec3::Constant(3.5));
+      spine.extend(Vec3(0, 44 + v, z - 3) - Vec3::Constant(3.5));
+      spine.extend(Vec3(0, 44 + v, z - 3) + Vec3::Constant(3.5));
+    }
+  }
+};
+
+const MinGroups& min_groups() {
+  static const MinGroups groups;
+  return groups;
+}
+
+/// True when every shape inside `box` lies farther from p than d (with a margin far above rounding), so that
+/// min(d, shape) is d for all of them: p lies outside the box, farther than d.
+bool beyond(const BoundingBox& box, const Vec3& p, double d) {
+  const Vec3 gap = (box.min - p).cwiseMax(p - box.max);
+  if (gap.maxCoeff() <= 0.0) return false;  // inside the box: a shape may hold p
+  return gap.cwiseMax(0.0).norm() > d + 1e-6;
+}
+
 }  // namespace
 
 HeadPhantom::HeadPhantom() {
@@ -76,12 +122,10 @@ double HeadPhantom::bone_distance(const Vec3& p) const {
   d = smooth_subtract(d, ellipsoid(p, Vec3(0, -80, -4), Vec3(11, 14, 14)), 3.0);
   d = smooth_union(d, capsule(p, Vec3(0, -76, 24), Vec3(0, -86, 4), 4.5, 3.5), 3.0);
   // Teeth: upper and lower rows along the dental arch.
-  for (int row = 0; row < 2; ++row) {
-    const double z = row == 0 ? -39.0 : -47.0;
-    for (int t = 0; t < 8; ++t) {
-      const double angle = (t + 0.5) / 8.0 * 1.35;  // radians from the midline
-      const Vec3 centre(std::sin(angle) * 24.0, -78.0 + (1.0 - std::cos(angle)) * 34.0, z);
-      d = std::min(d, rounded_box(q, centre, Vec3(3.2, 3.0, 4.2), 1.5));
+  const MinGroups& groups = min_groups();
+  if (!beyond(groups.teeth, q, d)) {
+    for (const auto& row : groups.tooth_centre) {
+      for (const Vec3& centre : row) d = std::min(d, rounded_box(q, centre, Vec3(3.2, 3.0, 4.2), 1.5));
     }
   }
   // Mandible: body, chin, rami.
@@ -90,6 +134,7 @@ double HeadPhantom::bone_distance(const Vec3& p) const {
   d = smooth_union(d, capsule(p, Vec3(-20, -70, -60), Vec3(20, -70, -60), 6.5, 6.5), 5.0);
   d = smooth_union(d, ellipsoid(p, Vec3(0, -68, -52), Vec3(14, 6, 10)), 4.0);  // alveolar part under the teeth
   // Cervical spine: seven vertebral bodies with discs between them.
+  if (beyond(groups.spine, p, d)) return d;
   for (int v = 0; v < 7; ++v) {
     const double z = -34.0 - v * 16.0;
     d = std::min(d, rounded_box(p, Vec3(0, 24 + v * 0.8, z), Vec3(9, 8, 6.2), 3.0));

@@ -171,3 +171,34 @@ TEST(TemplateHead, RejectsBadOptions) {
   o.skull_voxel_mm = 50;
   EXPECT_THROW(make_template_head(o), InputError);
 }
+
+// The staged build (the skull half first, so that landmark detection may run while the skin is built) gives the
+// same head, to the bit, as make_template_head.
+TEST(TemplateHead, SkullAndSkinHalvesJoinToTheSameHead) {
+  const TemplateHeadOptions options = template_head_options("coarse");
+  const TemplateHead skull_part = make_template_skull(options);
+  ASSERT_FALSE(skull_part.skull.triangles.empty());
+  ASSERT_FALSE(skull_part.landmarks.empty());
+  EXPECT_TRUE(skull_part.skin.positions.empty());
+  const TemplateHead joined = join_template_head(skull_part, make_template_skin(options));
+  const TemplateHead& head = coarse_template_head();
+  EXPECT_EQ(joined.skull.positions, head.skull.positions);
+  EXPECT_EQ(joined.skull.triangles, head.skull.triangles);
+  EXPECT_EQ(joined.skin.positions, head.skin.positions);
+  EXPECT_EQ(joined.skin.triangles, head.skin.triangles);
+  EXPECT_EQ(joined.skin.uvs, head.skin.uvs);
+  EXPECT_EQ(joined.triangle_chart, head.triangle_chart);
+  ASSERT_EQ(joined.landmarks.size(), head.landmarks.size());
+  for (std::size_t i = 0; i < head.landmarks.size(); ++i) {
+    EXPECT_EQ(joined.landmarks[i].skin_name, head.landmarks[i].skin_name);
+    EXPECT_EQ(joined.landmarks[i].skull, head.landmarks[i].skull);
+    EXPECT_EQ(joined.landmarks[i].skin, head.landmarks[i].skin);
+    EXPECT_EQ(joined.landmarks[i].depth_mm, head.landmarks[i].depth_mm);
+  }
+  ASSERT_EQ(joined.skin_landmarks.size(), head.skin_landmarks.size());
+  for (std::size_t i = 0; i < head.skin_landmarks.size(); ++i)
+    EXPECT_EQ(joined.skin_landmarks[i].position, head.skin_landmarks[i].position);
+  ASSERT_EQ(joined.muscles.size(), head.muscles.size());
+  for (std::size_t i = 0; i < head.muscles.size(); ++i) EXPECT_EQ(joined.muscles[i].grid, head.muscles[i].grid);
+  EXPECT_THROW((void)join_template_head(TemplateHead{}, TemplateSkin{}), InputError);
+}

@@ -1,8 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
 #include "core/error.hpp"
 #include "phantoms/arm_phantom.hpp"
 #include "phantoms/phantom.hpp"
+#include "phantoms/sdf.hpp"
 
 using namespace forensim;
 
@@ -92,4 +98,43 @@ TEST(Phantom, UnknownNameListsTheKnownOnes) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("arm, head"), std::string::npos) << e.what();
   }
+}
+
+// The head's bone distance skips its teeth and its cervical spine (plain minima) where their boxes lie farther
+// than the distance so far: it must still be at most every one of those shapes' distances (a wrong skip leaves
+// a larger value where a tooth or a vertebra is the nearest bone). Points fill boxes around both groups.
+TEST(HeadPhantom, BoneDistanceIsAtMostEveryToothAndVertebra) {
+  const auto phantom = make_phantom("head");
+  std::vector<std::pair<Vec3, Vec3>> boxes = {{Vec3(-40, -95, -62), Vec3(40, -40, -24)},
+                                              {Vec3(-25, 0, -150), Vec3(25, 70, -15)}};
+  std::size_t checked = 0, on_group = 0;
+  for (const auto& [lo, hi] : boxes) {
+    for (double x = lo.x(); x <= hi.x(); x += 1.7) {
+      for (double y = lo.y(); y <= hi.y(); y += 1.3) {
+        for (double z = lo.z(); z <= hi.z(); z += 1.1) {
+          const Vec3 p(x, y, z);
+          const Vec3 q(std::abs(x), y, z);
+          double group = std::numeric_limits<double>::infinity();
+          for (int row = 0; row < 2; ++row) {
+            for (int t = 0; t < 8; ++t) {
+              const double angle = (t + 0.5) / 8.0 * 1.35;
+              const Vec3 c(std::sin(angle) * 24.0, -78.0 + (1.0 - std::cos(angle)) * 34.0, row == 0 ? -39.0 : -47.0);
+              group = std::min(group, sdf::rounded_box(q, c, Vec3(3.2, 3.0, 4.2), 1.5));
+            }
+          }
+          for (int v = 0; v < 7; ++v) {
+            const double vz = -34.0 - v * 16.0;
+            group = std::min(group, sdf::rounded_box(p, Vec3(0, 24 + v * 0.8, vz), Vec3(9, 8, 6.2), 3.0));
+            group = std::min(group, sdf::capsule(p, Vec3(0, 30 + v * 0.8, vz), Vec3(0, 44 + v, vz - 3), 3.5, 3.0));
+          }
+          const double d = phantom->bone_distance(p);
+          // 1e-9 mm: the tooth centres' trigonometry may round differently here than in the phantom.
+          ASSERT_LE(d, group + 1e-9) << "at " << p.transpose();
+          on_group += std::abs(d - group) <= 1e-9 ? 1 : 0;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(on_group, checked / 20) << "the groups are the nearest bone at many of the points";
 }
