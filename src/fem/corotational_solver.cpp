@@ -1,6 +1,7 @@
 #include "fem/corotational_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -18,6 +19,7 @@ const std::string source = "corotational solver";
 constexpr double kpa_per_pa = 1e-3;  // stress unit of (mm, kg, s): kg / (mm s^2) = 1 kPa
 constexpr double kg_per_mm3_per_kg_per_m3 = 1e-9;
 constexpr double internal_force_per_n = 1e3;  // force unit of (mm, kg, s): kg mm / s^2 = 1 mN
+constexpr std::size_t evaluate_grain = 256;   // tets per batch of polar rotations in evaluate()
 
 }  // namespace
 
@@ -154,23 +156,36 @@ struct CorotationalSolver::Impl {
     tet_energy.resize(live_tets.size());
     parallel_for_chunks(
         0, live_tets.size(),
-        [&](std::size_t lo, std::size_t hi) {
-          for (std::size_t i = lo; i < hi; ++i) {
-            const auto t = static_cast<std::size_t>(live_tets[i]);
-            const Mat3 f = tet_field_gradient(grads[t], corners(x, t));
-            const Mat3 r = polar_rotation(f);
-            rotations[t] = r;
-            const Mat3 sigma = corotated_stress(r, f, lame[t][0], lame[t][1], strain_of(t));
-            // e : sigma with e = sym(R^T F) - (1 + s) I recovered from sigma = lambda tr(e) I + 2 mu e.
-            const Mat3 rf = r.transpose() * f;
-            Mat3 e = 0.5 * (rf + rf.transpose());
-            e.diagonal().array() -= 1.0 + strain_of(t);
-            Mat34 fc = -volumes[t] * (r * sigma) * grads[t];
-            tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, f, fc);
-            for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+        [&](std::size_t chunk_lo, std::size_t chunk_hi) {
+          // Deformation gradients of up to evaluate_grain tets first, so that their polar rotations are
+          // computed in batches.
+          std::array<Mat3, evaluate_grain> f, r;
+          f.fill(Mat3::Zero());  // (written below for the tets at hand; set for the compiler's analysis)
+          for (std::size_t lo = chunk_lo; lo < chunk_hi; lo += evaluate_grain) {
+            const std::size_t hi = std::min(chunk_hi, lo + evaluate_grain);
+            for (std::size_t i = lo; i < hi; ++i) {
+              const auto t = static_cast<std::size_t>(live_tets[i]);
+              f[i - lo] = tet_field_gradient(grads[t], corners(x, t));
+            }
+            polar_rotations(f.data(), r.data(), hi - lo);
+            for (std::size_t i = lo; i < hi; ++i) {
+              const auto t = static_cast<std::size_t>(live_tets[i]);
+              const Mat3& ft = f[i - lo];
+              const Mat3& rt = r[i - lo];
+              rotations[t] = rt;
+              // sigma = lambda tr(e) I + 2 mu e, e = sym(R^T F) - (1 + s) I (corotated_stress), and e : sigma.
+              const Mat3 rf = rt.transpose() * ft;
+              Mat3 e = 0.5 * (rf + rf.transpose());
+              e.diagonal().array() -= 1.0 + strain_of(t);
+              Mat3 sigma = (2.0 * lame[t][1]) * e;
+              sigma.diagonal().array() += lame[t][0] * e.trace();
+              Mat34 fc = -volumes[t] * (rt * sigma) * grads[t];
+              tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, ft, fc);
+              for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+            }
           }
         },
-        256);
+        evaluate_grain);
     gather(force);
     double work = 0.0;
     for (std::size_t n = 0; n < node_count; ++n) {
