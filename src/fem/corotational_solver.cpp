@@ -1,6 +1,7 @@
 #include "fem/corotational_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -18,6 +19,7 @@ const std::string source = "corotational solver";
 constexpr double kpa_per_pa = 1e-3;  // stress unit of (mm, kg, s): kg / (mm s^2) = 1 kPa
 constexpr double kg_per_mm3_per_kg_per_m3 = 1e-9;
 constexpr double internal_force_per_n = 1e3;  // force unit of (mm, kg, s): kg mm / s^2 = 1 mN
+constexpr std::size_t evaluate_grain = 256;   // tets per batch of polar rotations in evaluate()
 
 }  // namespace
 
@@ -78,6 +80,11 @@ struct CorotationalSolver::Impl {
   SparseMatrix system;
   std::vector<std::ptrdiff_t> masked_entries;  // value indices zeroed for fixed dofs
   std::vector<std::ptrdiff_t> fixed_diagonals;
+
+  // Free nodes in increasing order: free node j holds dofs 3 j .. 3 j + 2 of the factorised system (fixed
+  // dofs are identity rows of the full system and left out of the factor, which they would only fill).
+  std::vector<Index> free_nodes;
+  mutable Eigen::VectorXd free_rhs, free_solution;
 
   /// A factorised (or diagonal) preconditioner mass_scale M + stiffness_scale K_rest.
   struct Preconditioner {
@@ -149,23 +156,36 @@ struct CorotationalSolver::Impl {
     tet_energy.resize(live_tets.size());
     parallel_for_chunks(
         0, live_tets.size(),
-        [&](std::size_t lo, std::size_t hi) {
-          for (std::size_t i = lo; i < hi; ++i) {
-            const auto t = static_cast<std::size_t>(live_tets[i]);
-            const Mat3 f = tet_field_gradient(grads[t], corners(x, t));
-            const Mat3 r = polar_rotation(f);
-            rotations[t] = r;
-            const Mat3 sigma = corotated_stress(r, f, lame[t][0], lame[t][1], strain_of(t));
-            // e : sigma with e = sym(R^T F) - (1 + s) I recovered from sigma = lambda tr(e) I + 2 mu e.
-            const Mat3 rf = r.transpose() * f;
-            Mat3 e = 0.5 * (rf + rf.transpose());
-            e.diagonal().array() -= 1.0 + strain_of(t);
-            Mat34 fc = -volumes[t] * (r * sigma) * grads[t];
-            tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, f, fc);
-            for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+        [&](std::size_t chunk_lo, std::size_t chunk_hi) {
+          // Deformation gradients of up to evaluate_grain tets first, so that their polar rotations are
+          // computed in batches.
+          std::array<Mat3, evaluate_grain> f, r;
+          f.fill(Mat3::Zero());  // (written below for the tets at hand; set for the compiler's analysis)
+          for (std::size_t lo = chunk_lo; lo < chunk_hi; lo += evaluate_grain) {
+            const std::size_t hi = std::min(chunk_hi, lo + evaluate_grain);
+            for (std::size_t i = lo; i < hi; ++i) {
+              const auto t = static_cast<std::size_t>(live_tets[i]);
+              f[i - lo] = tet_field_gradient(grads[t], corners(x, t));
+            }
+            polar_rotations(f.data(), r.data(), hi - lo);
+            for (std::size_t i = lo; i < hi; ++i) {
+              const auto t = static_cast<std::size_t>(live_tets[i]);
+              const Mat3& ft = f[i - lo];
+              const Mat3& rt = r[i - lo];
+              rotations[t] = rt;
+              // sigma = lambda tr(e) I + 2 mu e, e = sym(R^T F) - (1 + s) I (corotated_stress), and e : sigma.
+              const Mat3 rf = rt.transpose() * ft;
+              Mat3 e = 0.5 * (rf + rf.transpose());
+              e.diagonal().array() -= 1.0 + strain_of(t);
+              Mat3 sigma = (2.0 * lame[t][1]) * e;
+              sigma.diagonal().array() += lame[t][0] * e.trace();
+              Mat34 fc = -volumes[t] * (rt * sigma) * grads[t];
+              tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, ft, fc);
+              for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
+            }
           }
         },
-        256);
+        evaluate_grain);
     gather(force);
     double work = 0.0;
     for (std::size_t n = 0; n < node_count; ++n) {
@@ -245,14 +265,15 @@ struct CorotationalSolver::Impl {
     for (std::size_t d = 0; d < diag.size(); ++d) values[diag[d]] += mass_scale * mass[d / 3];
     for (std::ptrdiff_t k : masked_entries) values[k] = 0.0;
     for (std::ptrdiff_t k : fixed_diagonals) values[k] = 1.0;
-    if (settings.preconditioner == ElasticPreconditioner::rest_cholesky) {
+    if (settings.preconditioner == ElasticPreconditioner::rest_cholesky && !free_nodes.empty()) {
+      const SparseMatrix free_system = free_block(system);
       if (!p.factor) {
         p.factor = make_sparse_solver(settings.single_precision_factor ? SparseSolverKind::cholmod_single
                                                                        : SparseSolverKind::cholmod);
-        p.factor->analyse(system);
+        p.factor->analyse(free_system);
       }
-      p.factor->factor(system);
-    } else {
+      p.factor->factor(free_system);
+    } else if (settings.preconditioner == ElasticPreconditioner::jacobi) {
       p.inverse_diagonal.resize(static_cast<Eigen::Index>(diag.size()));
       for (std::size_t d = 0; d < diag.size(); ++d)
         p.inverse_diagonal[static_cast<Eigen::Index>(d)] = 1.0 / values[diag[d]];
@@ -261,22 +282,68 @@ struct CorotationalSolver::Impl {
     p.stiffness_scale = stiffness_scale;
   }
 
-  /// out = Q P^-1 Q^T r blockwise, Q the overall rotation.
+  /// The rows and columns of the free dofs of `full` (3 #V square, full symmetric storage), in free_nodes
+  /// order: the fixed dofs' rows are identity rows, uncoupled from the rest.
+  SparseMatrix free_block(const SparseMatrix& full) const {
+    std::vector<int> block_of(node_count, -1);
+    for (std::size_t j = 0; j < free_nodes.size(); ++j)
+      block_of[static_cast<std::size_t>(free_nodes[j])] = static_cast<int>(j);
+    const auto size = static_cast<Eigen::Index>(3 * free_nodes.size());
+    SparseMatrix out(size, size);
+    const int* outer = full.outerIndexPtr();
+    const int* inner = full.innerIndexPtr();
+    const double* values = full.valuePtr();
+    std::size_t count = 0;
+    for (Index n : free_nodes)
+      for (int c = 0; c < 3; ++c) {
+        const auto col = 3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(c);
+        for (int k = outer[col]; k < outer[col + 1]; ++k)
+          count += block_of[static_cast<std::size_t>(inner[k] / 3)] >= 0;
+      }
+    out.reserve(static_cast<Eigen::Index>(count));
+    for (std::size_t j = 0; j < free_nodes.size(); ++j) {
+      for (int c = 0; c < 3; ++c) {
+        const auto col = 3 * static_cast<Eigen::Index>(free_nodes[j]) + c;
+        out.startVec(3 * static_cast<Eigen::Index>(j) + c);
+        // Rows of a column are sorted and free_nodes is increasing: the free rows stay sorted.
+        for (int k = outer[col]; k < outer[col + 1]; ++k) {
+          const int b = block_of[static_cast<std::size_t>(inner[k] / 3)];
+          if (b >= 0) out.insertBack(3 * b + inner[k] % 3, 3 * static_cast<Eigen::Index>(j) + c) = values[k];
+        }
+      }
+    }
+    out.finalize();
+    return out;
+  }
+
+  /// out = Q P^-1 Q^T r blockwise, Q the overall rotation; out = r on fixed dofs (identity rows).
   void apply_preconditioner(const Preconditioner& p, const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
-    Eigen::VectorXd local(r.size());
-    for (std::size_t n = 0; n < node_count; ++n) {
-      const auto i = 3 * static_cast<Eigen::Index>(n);
-      local.segment<3>(i) = overall_rotation.transpose() * r.segment<3>(i);
+    if (free_nodes.empty()) {
+      out = r;  // every dof fixed
+      return;
     }
-    if (p.factor) {
-      p.factor->solve(local, out);
-    } else {
+    if (!p.factor) {
+      Eigen::VectorXd local(r.size());
+      for (std::size_t n = 0; n < node_count; ++n) {
+        const auto i = 3 * static_cast<Eigen::Index>(n);
+        local.segment<3>(i) = overall_rotation.transpose() * r.segment<3>(i);
+      }
       out = p.inverse_diagonal.cwiseProduct(local);
+      for (std::size_t n = 0; n < node_count; ++n) {
+        const auto i = 3 * static_cast<Eigen::Index>(n);
+        out.segment<3>(i) = overall_rotation * out.segment<3>(i).eval();
+      }
+      return;
     }
-    for (std::size_t n = 0; n < node_count; ++n) {
-      const auto i = 3 * static_cast<Eigen::Index>(n);
-      out.segment<3>(i) = overall_rotation * out.segment<3>(i).eval();
-    }
+    free_rhs.resize(static_cast<Eigen::Index>(3 * free_nodes.size()));
+    for (std::size_t j = 0; j < free_nodes.size(); ++j)
+      free_rhs.segment<3>(3 * static_cast<Eigen::Index>(j)) =
+          overall_rotation.transpose() * r.segment<3>(3 * static_cast<Eigen::Index>(free_nodes[j]));
+    p.factor->solve(free_rhs, free_solution);
+    out = r;
+    for (std::size_t j = 0; j < free_nodes.size(); ++j)
+      out.segment<3>(3 * static_cast<Eigen::Index>(free_nodes[j])) =
+          overall_rotation * free_solution.segment<3>(3 * static_cast<Eigen::Index>(j));
   }
 
   /// Q: polar rotation of sum_n m_n (x_n - c)(X_n - C)^T (c, C the centres of mass now and at rest).
@@ -346,8 +413,15 @@ struct CorotationalSolver::Impl {
         node_corners[static_cast<std::size_t>(fill[n]++)] = 4 * t + a;
       }
     }
-    // The preconditioners hold the fixed dofs as identity rows: rebuild them on next use.
-    static_preconditioner.mass_scale = dynamic_preconditioner.mass_scale = -1.0;
+    free_nodes.clear();
+    for (std::size_t n = 0; n < node_count; ++n)
+      if (fixed[n] == 0) free_nodes.push_back(static_cast<Index>(n));
+    // The preconditioners leave out (factor) or hold as identity rows (diagonal) the fixed dofs: rebuild
+    // and analyse them again on next use.
+    for (Preconditioner* p : {&static_preconditioner, &dynamic_preconditioner}) {
+      p->mass_scale = -1.0;
+      p->factor.reset();
+    }
   }
 
   Eigen::VectorXd flatten(const std::vector<Vec3>& x) const {

@@ -32,7 +32,10 @@
 /// overall rotation (the polar rotation of the mass-weighted covariance of the current and rest positions)
 /// so that a moved or turned body is preconditioned as well as one at rest. Drying bodies rotate little
 /// locally, so CG needs a few iterations; the factorisation depends on the model only (never on the
-/// history of a run), so a run resumed from a checkpoint repeats the same arithmetic bit for bit.
+/// history of a run), so a run resumed from a checkpoint repeats the same arithmetic bit for bit. Only the
+/// free dofs are factorised (the fixed ones are identity rows, uncoupled): with the skeleton held, about half
+/// the nodes of the paper arm and head, that cuts the factor's fill about threefold (paper arm: 20.1 to 7.0
+/// million entries) and with it the cost of each preconditioner solve.
 ///
 /// Bone ("rigid" tets) does not shrink. RigidMode::fixed holds every node of a rigid tet in place (an
 /// anchored skeleton: exact, the simplest acceptable model); RigidMode::stiff multiplies the Young's

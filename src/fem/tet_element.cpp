@@ -2,7 +2,9 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/error.hpp"
@@ -119,26 +121,90 @@ Mat3 rotation_from_deformation(const Mat3& deformation_gradient) {
   return u * v.transpose();
 }
 
-Mat3 polar_rotation(const Mat3& deformation_gradient) {
-  Mat3 x = deformation_gradient;
-  bool scaled = true;
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    // X^-T = cofactor(X) / det X.
-    Mat3 cofactor;
-    cofactor.col(0) = x.col(1).cross(x.col(2));
-    cofactor.col(1) = x.col(2).cross(x.col(0));
-    cofactor.col(2) = x.col(0).cross(x.col(1));
-    const double det = x.col(0).dot(cofactor.col(0));
-    if (!(det > 0.0) || !std::isfinite(det)) break;  // inverted or degenerate: the SVD decides
-    double zeta = 1.0;
-    if (scaled) zeta = std::sqrt(std::sqrt(cofactor.squaredNorm() / (det * det * x.squaredNorm())));
-    const Mat3 next = 0.5 * (zeta * x + cofactor / (zeta * det));
-    const double change = (next - x).cwiseAbs().maxCoeff();
-    x = next;
-    if (change < 1e-8) return x;
-    scaled = change > 1e-2;  // near convergence scaling only perturbs the quadratic rate
+namespace {
+
+// Packets of Eigen's SIMD layer (SSE2: 2 doubles; AVX: 4), four per group of lanes in batches; a lone matrix
+// runs the same arithmetic on plain doubles (Eigen's scalar packet operations).
+using Packet = Eigen::internal::packet_traits<double>::type;
+constexpr std::size_t packet_size = static_cast<std::size_t>(Eigen::internal::packet_traits<double>::size);
+constexpr std::size_t batch_lanes = 4 * packet_size;
+
+template <typename P, std::size_t Width, std::size_t Lanes>
+void polar_lane_group(const Mat3* f, Mat3* r, std::size_t count) {
+  using namespace Eigen::internal;
+  alignas(64) double x[9][Lanes];
+  alignas(64) double flags[3][Lanes];  // all-ones bit masks: 0 scaled, 1 open (iterating), 2 failed
+  const double all_ones = Eigen::numext::bit_cast<double>(~std::uint64_t{0});
+  for (std::size_t l = 0; l < Lanes; ++l) {
+    const Mat3& m = l < count ? f[l] : f[0];
+    for (int k = 0; k < 9; ++k) x[k][l] = m(k);
+    flags[0][l] = all_ones;
+    flags[1][l] = l < count ? all_ones : 0.0;
+    flags[2][l] = 0.0;
   }
-  return rotation_from_deformation(deformation_gradient);
+  const P zero = pset1<P>(0.0), one = pset1<P>(1.0), half = pset1<P>(0.5);
+  const P largest = pset1<P>(std::numeric_limits<double>::max());
+  const P settled = pset1<P>(1e-8), rescale = pset1<P>(1e-2);
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    bool any_open = false;
+    for (std::size_t j = 0; j < Lanes; j += Width) {
+      P v[9];
+      for (int k = 0; k < 9; ++k) v[k] = pload<P>(&x[k][j]);
+      // X^-T = cofactor(X) / det X; cofactor columns x1 x x2, x2 x x0, x0 x x1.
+      auto cross = [](const P& a0, const P& a1, const P& b0, const P& b1) { return psub(pmul(a0, b1), pmul(a1, b0)); };
+      const P k[9] = {cross(v[4], v[5], v[7], v[8]), cross(v[5], v[3], v[8], v[6]), cross(v[3], v[4], v[6], v[7]),
+                      cross(v[7], v[8], v[1], v[2]), cross(v[8], v[6], v[2], v[0]), cross(v[6], v[7], v[0], v[1]),
+                      cross(v[1], v[2], v[4], v[5]), cross(v[2], v[0], v[5], v[3]), cross(v[0], v[1], v[3], v[4])};
+      const P det = padd(padd(pmul(v[0], k[0]), pmul(v[1], k[1])), pmul(v[2], k[2]));
+      P cof_norm = pmul(k[0], k[0]), x_norm = pmul(v[0], v[0]);
+      for (int e = 1; e < 9; ++e) {
+        cof_norm = padd(cof_norm, pmul(k[e], k[e]));
+        x_norm = padd(x_norm, pmul(v[e], v[e]));
+      }
+      // Inverted, degenerate or not finite: the SVD decides (det <= DBL_MAX is false for inf and NaN).
+      const P ok = pand(pcmp_lt(zero, det), pcmp_le(det, largest));
+      const P scaled = pload<P>(&flags[0][j]);
+      const P open = pload<P>(&flags[1][j]);
+      const P zeta = pselect(scaled, psqrt(psqrt(pdiv(cof_norm, pmul(pmul(det, det), x_norm)))), one);
+      const P inverse = pdiv(one, pmul(zeta, det));
+      const P step = pand(open, ok);
+      P change = zero;
+      for (int e = 0; e < 9; ++e) {
+        const P next = pmul(half, padd(pmul(zeta, v[e]), pmul(k[e], inverse)));
+        change = pmax(change, pabs(psub(next, v[e])));
+        pstore(&x[e][j], pselect(step, next, v[e]));
+      }
+      const P still_open = pandnot(step, pcmp_lt(change, settled));
+      pstore(&flags[0][j], pselect(step, pcmp_lt(rescale, change), scaled));
+      pstore(&flags[1][j], still_open);
+      pstore(&flags[2][j], por(pload<P>(&flags[2][j]), pandnot(open, ok)));
+      any_open = any_open || predux_any(still_open);
+    }
+    if (!any_open) break;
+  }
+  for (std::size_t l = 0; l < count; ++l) {
+    const bool failed = Eigen::numext::bit_cast<std::uint64_t>(flags[2][l]) != 0 ||
+                        Eigen::numext::bit_cast<std::uint64_t>(flags[1][l]) != 0;
+    if (failed) {
+      r[l] = rotation_from_deformation(f[l]);
+    } else {
+      for (int k = 0; k < 9; ++k) r[l](k) = x[k][l];
+    }
+  }
+}
+
+}  // namespace
+
+Mat3 polar_rotation(const Mat3& deformation_gradient) {
+  Mat3 r;
+  polar_lane_group<double, 1, 1>(&deformation_gradient, &r, 1);
+  return r;
+}
+
+void polar_rotations(const Mat3* deformation_gradients, Mat3* rotations, std::size_t count) {
+  for (std::size_t i = 0; i < count; i += batch_lanes)
+    polar_lane_group<Packet, packet_size, batch_lanes>(deformation_gradients + i, rotations + i,
+                                                       std::min(batch_lanes, count - i));
 }
 
 Vec12 rotate_blocks(const Mat3& r, const Vec12& v) {

@@ -80,6 +80,12 @@ Mat3 rotation_from_deformation(const Mat3& deformation_gradient);
 /// (inverted) and when the iteration does not settle.
 Mat3 polar_rotation(const Mat3& deformation_gradient);
 
+/// polar_rotation of each of `count` deformation gradients, bit for bit the same results, computed in groups
+/// of lanes in SIMD packets (Eigen's; SSE2: 4 packets of 2), each matrix's iteration stopping on its own:
+/// about 1.6 times faster per matrix than one call each (145000 drying-like gradients, one core), which
+/// is latency-bound on its divisions and square roots. `rotations` must not overlap `deformation_gradients`.
+void polar_rotations(const Mat3* deformation_gradients, Mat3* rotations, std::size_t count);
+
 /// Gradient sum_i v_i grad N_i^T (3x3) of the linear field with corner values v (columns of `corners`, 3x4):
 /// the deformation gradient F for corner positions, grad u for corner displacements.
 inline Mat3 tet_field_gradient(const Mat34& grads, const Mat34& corners) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <vector>
 
 #include "fem/tet_element.hpp"
 
@@ -181,6 +182,35 @@ TEST(TetElement, NewtonPolarRotationMatchesTheSvd) {
   inverted.col(0) = -inverted.col(0);
   EXPECT_NEAR(polar_rotation(inverted).determinant(), 1.0, 1e-12);
   EXPECT_LT((polar_rotation(inverted) - rotation_from_deformation(inverted)).norm(), 1e-12);
+}
+
+TEST(TetElement, BatchedPolarRotationsAreTheLoneOnesBitForBit) {
+  // Mixed batches (lengths not multiples of the lane group): mild and strong stretches, an inverted and a
+  // singular gradient (SVD fallback). Each result must equal polar_rotation exactly, whatever its neighbours
+  // in the batch.
+  Mat3 s;
+  s << 1.2, 0.1, 0.0, 0.1, 0.9, 0.05, 0.0, 0.05, 1.1;
+  std::vector<Mat3> f;
+  for (int i = 0; i < 37; ++i) {
+    const double t = 0.1 * i;
+    Mat3 g = rotation(0.3 * i, Vec3(1.0, t, 2.0 - t)) * ((0.7 + 0.02 * i) * s);
+    g(0, 1) += (i % 5 == 0) ? 3.0 : 0.0;          // strongly sheared: more iterations than its neighbours
+    if (i % 7 == 3) g.col(0) = -g.col(0);         // inverted
+    if (i == 11) g.col(2) = g.col(0) + g.col(1);  // singular
+    f.push_back(g);
+  }
+  for (std::size_t count : {std::size_t{1}, std::size_t{5}, std::size_t{8}, std::size_t{37}}) {
+    std::vector<Mat3> r(count);
+    polar_rotations(f.data(), r.data(), count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Mat3 lone = polar_rotation(f[i]);
+      for (int k = 0; k < 9; ++k) EXPECT_EQ(r[i](k), lone(k)) << "matrix " << i << " of " << count;
+      if (std::abs(f[i].determinant()) > 1e-9) {
+        EXPECT_NEAR(r[i].determinant(), 1.0, 1e-12) << i;
+        EXPECT_LT((r[i] - rotation_from_deformation(f[i])).norm(), 1e-11) << i;
+      }
+    }
+  }
 }
 
 TEST(TetElement, CorotatedStressGivesTheElementForceAndStiffness) {
