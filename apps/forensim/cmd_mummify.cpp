@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -199,7 +200,12 @@ int run_mummify(const MummifyArgs& a) {
 
   BodyModel body;
   std::string kind = job.phantom;
+  // The pictures' titles: the phantom, or the model folder's name (the views stay those of `kind`).
+  std::string label = job.phantom;
   if (!job.model.empty()) {
+    label = std::filesystem::path(job.model).lexically_normal().filename().string();
+    if (label.empty()) label = std::filesystem::path(job.model).lexically_normal().parent_path().filename().string();
+    if (label.empty()) label = "body model";
     body = read_body_model(job.model);
     std::printf("body model %s: %zu nodes, %zu tets\n", job.model.c_str(), body.volume.vertex_count(),
                 body.volume.tet_count());
@@ -487,12 +493,12 @@ int run_mummify(const MummifyArgs& a) {
     cells.push_back({outside, std::string(caption) + ": moisture outside"});
     cells.push_back({cut, std::string(caption) + ": moisture, cut through the bone"});
     cells.push_back({shrunk, std::string(caption) + ": shrunken over the original"});
-    write_png(run.file("mummify_sheet.png"), make_sheet(cells, 2, "forensim mummify: " + kind));
+    write_png(run.file("mummify_sheet.png"), make_sheet(cells, 2, "forensim mummify: " + label));
     run.add_output("mummify_sheet.png");
     write_png(run.file("skin_timeline.png"), skin_timeline_sheet(skin.rest_skin(), skin_frames, views.axes,
-                                                                 views.outside, settings, kind + " skin drying"));
+                                                                 views.outside, settings, label + " skin drying"));
     write_png(run.file("skin_turntable.png"), skin_turntable_sheet(skin.rest_skin(), skin_frames.back(), views.axes, 8,
-                                                                   settings, kind + ", " + caption));
+                                                                   settings, label + ", " + caption));
     for (const char* f : {"skin_timeline.png", "skin_turntable.png"}) run.add_output(f);
     if (!figure8.empty()) {
       // Top row: the three skins as they look; bottom row: a close-up (the wrist and palm when the model has them)
@@ -538,7 +544,7 @@ int run_mummify(const MummifyArgs& a) {
       bar.title = "lift-off";
       bar.unit = "mm";
       write_png(run.file("figure8.png"),
-                with_colour_bar(make_sheet(sets, 3, kind + ", " + caption + ": Figure 8 (r_max, damping)"), bar));
+                with_colour_bar(make_sheet(sets, 3, label + ", " + caption + ": Figure 8 (r_max, damping)"), bar));
       run.add_output("figure8.png");
     }
     run.timings().add("pictures", picture_watch.seconds());
