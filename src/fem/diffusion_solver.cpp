@@ -85,6 +85,11 @@ struct DiffusionSolver::Impl {
   /// (-1 on the diagonal). assemble() gathers each edge once for its two symmetric entries.
   std::vector<std::ptrdiff_t> edge_entry;
   std::vector<int> entry_edge;
+  /// The same sources in mesh-edge order, each edge's together (edge_source_start), as the element and that
+  /// element edge's stiffness (refreshed by update_geometry): the gather of assemble() then reads them in
+  /// sequence and only the per-element coefficient at random.
+  std::vector<int> edge_source_start, edge_source_element;
+  std::vector<double> edge_source_stiffness;
   std::vector<double> edge_value, edge_mass;    // scratch of assemble(): K_ab and the consistent-mass sum
   std::vector<double> element_coefficient;      // dt c D (mm^2) per element, scratch of assemble()
   std::vector<double> element_capacity_volume;  // c V per element, scratch of assemble()
@@ -140,6 +145,18 @@ struct DiffusionSolver::Impl {
         }
       }
     }
+    edge_source_start.assign(edge_entry.size() + 1, 0);
+    for (std::size_t edge = 0; edge < edge_entry.size(); ++edge) {
+      const auto k = static_cast<std::size_t>(edge_entry[edge]);
+      edge_source_start[edge + 1] = edge_source_start[edge] + (entry_start[k + 1] - entry_start[k]);
+    }
+    edge_source_element.assign(static_cast<std::size_t>(edge_source_start.back()), 0);
+    for (std::size_t edge = 0; edge < edge_entry.size(); ++edge) {
+      const auto k = static_cast<std::size_t>(edge_entry[edge]);
+      int out = edge_source_start[edge];
+      for (int i = entry_start[k]; i < entry_start[k + 1]; ++i)
+        edge_source_element[static_cast<std::size_t>(out++)] = entry_sources[static_cast<std::size_t>(i)] / 6;
+    }
     const std::size_t dofs = dof_node.size();
     dof_start.assign(dofs + 1, 0);
     for (const Tet& t : elements)
@@ -168,6 +185,17 @@ struct DiffusionSolver::Impl {
             edge_stiffness[e][j] = volumes[e] * g.col(tet_edges[j][0]).dot(g.col(tet_edges[j][1]));
         },
         1024);
+    edge_source_stiffness.resize(edge_source_element.size());
+    parallel_for_chunks(0, edge_entry.size(), [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t edge = lo; edge < hi; ++edge) {
+        const auto k = static_cast<std::size_t>(edge_entry[edge]);
+        int out = edge_source_start[edge];
+        for (int i = entry_start[k]; i < entry_start[k + 1]; ++i) {
+          const auto src = static_cast<std::size_t>(entry_sources[static_cast<std::size_t>(i)]);
+          edge_source_stiffness[static_cast<std::size_t>(out++)] = edge_stiffness[src / 6][src % 6];
+        }
+      }
+    });
     face_area.resize(used_faces.size());
     for (std::size_t k = 0; k < used_faces.size(); ++k) {
       const Tri& v = faces[used_faces[k]].vertices;
@@ -200,12 +228,11 @@ struct DiffusionSolver::Impl {
     if (!lumped) edge_mass.resize(edge_entry.size());
     parallel_for_chunks(0, edge_entry.size(), [&](std::size_t lo, std::size_t hi) {
       for (std::size_t edge = lo; edge < hi; ++edge) {
-        const auto k = static_cast<std::size_t>(edge_entry[edge]);
         double v = 0.0, m = 0.0;
-        for (int i = entry_start[k]; i < entry_start[k + 1]; ++i) {
-          const auto src = static_cast<std::size_t>(entry_sources[static_cast<std::size_t>(i)]);
-          v += element_coefficient[src / 6] * edge_stiffness[src / 6][src % 6];
-          if (!lumped) m += element_capacity_volume[src / 6];
+        for (int i = edge_source_start[edge]; i < edge_source_start[edge + 1]; ++i) {
+          const auto element = static_cast<std::size_t>(edge_source_element[static_cast<std::size_t>(i)]);
+          v += element_coefficient[element] * edge_source_stiffness[static_cast<std::size_t>(i)];
+          if (!lumped) m += element_capacity_volume[element];
         }
         edge_value[edge] = v;
         if (!lumped) edge_mass[edge] = m;
