@@ -172,13 +172,9 @@ BenchRow bench_ct_end_to_end(const std::string& label, const ScalarGrid& volume,
               }
               skull = skull_from_volume(volume, label);
               head = make_template_skull(template_options);
-              LandmarkDetectionOptions detection_options;
-              detection_options.registration.similarity.target_view = skull.field_of_view;
-              detection = detect_template_landmarks(head, skull.mesh, detection_options);
-              bool unseen = false;
-              for (const DetectedLandmark& d : detection->details) unseen = unseen || !d.in_view;
-              if (unseen)
-                skull.mesh = complete_skull(skull.mesh, skull.field_of_view, head.skull, detection->registration).mesh;
+              ScanLandmarkDetection found = detect_scan_landmarks(head, skull.mesh, skull.field_of_view);
+              detection = std::move(found.detection);
+              if (found.completion) skull.mesh = std::move(found.completion->mesh);
             },
             1);
         head = join_template_head(std::move(head), std::move(skin));

@@ -210,23 +210,20 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   std::optional<SkullCompletion> completion;
   // Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
   // scan did not see lie on the registered template, whose missing part completes the skull.
-  double detection_s = 0.0, completion_s = 0.0;
+  double detection_s = 0.0;  // with the skull's completion
   const auto detect = [&] {
     Stopwatch part;
-    LandmarkDetectionOptions detection_options;
-    detection_options.registration.similarity.target_view = skull.field_of_view;
-    detection = detect_template_landmarks(head, skull.mesh, detection_options);
+    ScanLandmarkDetection found = detect_scan_landmarks(head, skull.mesh, skull.field_of_view);
+    detection = std::move(found.detection);
+    completion = std::move(found.completion);
     detection_s = part.lap();
-    std::size_t unseen = 0;
-    for (const DetectedLandmark& d : detection->details) unseen += d.in_view ? 0 : 1;
-    if (unseen > 0) {
-      completion = complete_skull(skull.mesh, skull.field_of_view, head.skull, detection->registration);
+    const std::size_t unseen = found.unseen;
+    if (completion) {
       skull.mesh = completion->mesh;
       skull.notes.push_back(fmt::format(
           "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
           "triangles of the cut dropped)",
           unseen, completion->reference_triangles, completion->cap_triangles));
-      completion_s = part.lap();
     }
   };
   if (builtin_skull) {
@@ -266,8 +263,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   if (detection) {
     for (const auto& [name, reason] : detection->left_out)
       std::printf("landmark %s left out: %s\n", name.c_str(), reason.c_str());
-    timings.add("landmark detection", detection_s);
-    if (completion) timings.add("skull completion", completion_s);
+    timings.add(completion ? "landmark detection and skull completion" : "landmark detection", detection_s);
     timings.add(
         builtin_skull ? "template and landmark detection" : "template, skull and landmark detection (side by side)",
         watch.lap());

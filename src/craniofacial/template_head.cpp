@@ -530,7 +530,7 @@ TemplateSkin make_template_skin(const TemplateHeadOptions& options) {
                               1);
   compute_normals(out.surface);
   out.seconds_surface = watch.lap();
-  out.skin = out.surface;
+  if (!options.uv_atlas) out.skin = out.surface;
   if (options.uv_atlas) {
     // The UV atlas cuts the skin along its seams.
     out.triangle_chart = assign_charts(out.surface);

@@ -77,4 +77,15 @@ LandmarkDetection detect_template_landmarks(const TemplateHead& head, const TriM
   return detection;
 }
 
+ScanLandmarkDetection detect_scan_landmarks(const TemplateHead& head, const TriMesh& skull,
+                                            const ScanFieldOfView& view) {
+  ScanLandmarkDetection out;
+  LandmarkDetectionOptions options;
+  options.registration.similarity.target_view = view;
+  out.detection = detect_template_landmarks(head, skull, options);
+  for (const DetectedLandmark& d : out.detection.details) out.unseen += d.in_view ? 0 : 1;
+  if (out.unseen > 0) out.completion = complete_skull(skull, view, head.skull, out.detection.registration);
+  return out;
+}
+
 }  // namespace forensim

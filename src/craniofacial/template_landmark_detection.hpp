@@ -6,7 +6,11 @@
 /// with a confidence per landmark). The template has no porion or orbitale, so its head frame is given
 /// directly: the phantom's LPS axes with the midsagittal plane x = 0.
 
+#include <cstddef>
+#include <optional>
+
 #include "craniofacial/landmark_detection.hpp"
+#include "craniofacial/skull_completion.hpp"
 #include "craniofacial/template_head.hpp"
 
 namespace forensim {
@@ -35,5 +39,16 @@ HeadFrame template_head_frame(const TemplateHead& head);
 /// final position. Throws InputError for an empty skull and the registration's errors.
 LandmarkDetection detect_template_landmarks(const TemplateHead& head, const TriMesh& skull,
                                             const LandmarkDetectionOptions& options = {});
+
+/// Automatic landmarks as forensim reconstruct places them on a scan: detect_template_landmarks within the scan's
+/// field of view, then, where landmarks lie outside it, the skull completed with the registered template's
+/// missing part (complete_skull).
+struct ScanLandmarkDetection {
+  LandmarkDetection detection;
+  std::size_t unseen = 0;                     ///< landmarks outside the field of view
+  std::optional<SkullCompletion> completion;  ///< when unseen > 0
+};
+ScanLandmarkDetection detect_scan_landmarks(const TemplateHead& head, const TriMesh& skull,
+                                            const ScanFieldOfView& view);
 
 }  // namespace forensim
