@@ -173,12 +173,9 @@ struct CorotationalSolver::Impl {
               const Mat3& ft = f[i - lo];
               const Mat3& rt = r[i - lo];
               rotations[t] = rt;
-              // sigma = lambda tr(e) I + 2 mu e, e = sym(R^T F) - (1 + s) I (corotated_stress), and e : sigma.
-              const Mat3 rf = rt.transpose() * ft;
-              Mat3 e = 0.5 * (rf + rf.transpose());
-              e.diagonal().array() -= 1.0 + strain_of(t);
-              Mat3 sigma = (2.0 * lame[t][1]) * e;
-              sigma.diagonal().array() += lame[t][0] * e.trace();
+              // corotated_stress with its strain kept for the energy e : sigma / 2.
+              const Mat3 e = corotated_strain(rt, ft, strain_of(t));
+              const Mat3 sigma = isotropic_stress(e, lame[t][0], lame[t][1]);
               Mat34 fc = -volumes[t] * (rt * sigma) * grads[t];
               tet_energy[i] = 0.5 * volumes[t] * (e.cwiseProduct(sigma)).sum() + barrier(t, ft, fc);
               for (int a = 0; a < 4; ++a) corner_buffer[4 * t + static_cast<std::size_t>(a)] = fc.col(a);
@@ -692,13 +689,10 @@ double CorotationalSolver::elastic_energy(const std::vector<Vec3>& positions_mm)
   for (std::size_t t = 0; t < s.tets.size(); ++t) {
     const Mat3 f = tet_field_gradient(s.grads[t], s.corners(x, t));
     const Mat3 r = polar_rotation(f);
-    const Mat3 rf = r.transpose() * f;
-    Mat3 e = 0.5 * (rf + rf.transpose());
-    e.diagonal().array() -= 1.0 + s.strain_of(t);
+    const Mat3 e = corotated_strain(r, f, s.strain_of(t));
     Mat34 unused;
-    energy +=
-        0.5 * s.volumes[t] * e.cwiseProduct(corotated_stress(r, f, s.lame[t][0], s.lame[t][1], s.strain_of(t))).sum() +
-        s.barrier(t, f, unused.setZero());
+    energy += 0.5 * s.volumes[t] * e.cwiseProduct(isotropic_stress(e, s.lame[t][0], s.lame[t][1])).sum() +
+              s.barrier(t, f, unused.setZero());
   }
   return energy / internal_force_per_n;  // internal energy unit kg mm^2/s^2 = mN mm
 }

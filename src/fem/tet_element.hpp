@@ -96,10 +96,22 @@ inline Mat3 tet_field_gradient(const Mat34& grads, const Mat34& corners) {
 /// unrotated frame: sigma = lambda tr(e) I + 2 mu e, e = sym(R^T G) - (1 + s) I, G = F (eq. 30's
 /// C (eps - eps0) with C isotropic). With s = -1 and G a displacement gradient it is the linear stress of
 /// R^T G, the product of the warped stiffness. lambda, mu: Lame parameters (lame_parameters).
+inline Mat3 corotated_strain(const Mat3& r, const Mat3& g, double s);
+inline Mat3 isotropic_stress(const Mat3& e, double lambda, double mu);
 inline Mat3 corotated_stress(const Mat3& r, const Mat3& g, double lambda, double mu, double s) {
+  return isotropic_stress(corotated_strain(r, g, s), lambda, mu);
+}
+
+/// The strain of corotated_stress, e = sym(R^T G) - (1 + s) I (the energy density is e : sigma / 2).
+inline Mat3 corotated_strain(const Mat3& r, const Mat3& g, double s) {
   const Mat3 rg = r.transpose() * g;
   Mat3 e = 0.5 * (rg + rg.transpose());
   e.diagonal().array() -= 1.0 + s;
+  return e;
+}
+
+/// sigma = lambda tr(e) I + 2 mu e (isotropic linear elasticity; lambda, mu: Lame parameters).
+inline Mat3 isotropic_stress(const Mat3& e, double lambda, double mu) {
   Mat3 sigma = (2.0 * mu) * e;
   sigma.diagonal().array() += lambda * e.trace();
   return sigma;
