@@ -159,25 +159,14 @@ BenchRow bench_ct_end_to_end(const std::string& label, const ScalarGrid& volume,
   const BenchTiming t = timed(
       options.repetitions,
       [&] {
-        TemplateHead head;
-        TemplateSkin skin;
         Skull skull;
         std::optional<LandmarkDetection> detection;
-        parallel_for(
-            0, 2,
-            [&](std::size_t part) {
-              if (part == 0) {
-                skin = make_template_skin(template_options);
-                return;
-              }
-              skull = skull_from_volume(volume, label);
-              head = make_template_skull(template_options);
-              ScanLandmarkDetection found = detect_scan_landmarks(head, skull.mesh, skull.field_of_view);
-              detection = std::move(found.detection);
-              if (found.completion) skull.mesh = std::move(found.completion->mesh);
-            },
-            1);
-        head = join_template_head(std::move(head), std::move(skin));
+        const TemplateHead head = make_template_head_beside(template_options, [&](const TemplateHead& skull_part) {
+          skull = skull_from_volume(volume, label);
+          ScanLandmarkDetection found = detect_scan_landmarks(skull_part, skull.mesh, skull.field_of_view);
+          detection = std::move(found.detection);
+          if (found.completion) skull.mesh = std::move(found.completion->mesh);
+        });
         const Reconstruction reconstruction(head, skull.mesh, detection->landmarks, depths);
         landmarks = detection->landmarks.size();
         rms = detection->registration.rms_mm;

@@ -211,9 +211,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   // Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
   // scan did not see lie on the registered template, whose missing part completes the skull.
   double detection_s = 0.0;  // with the skull's completion
-  const auto detect = [&] {
+  const auto detect = [&](const TemplateHead& reference) {
     Stopwatch part;
-    ScanLandmarkDetection found = detect_scan_landmarks(head, skull.mesh, skull.field_of_view);
+    ScanLandmarkDetection found = detect_scan_landmarks(reference, skull.mesh, skull.field_of_view);
     detection = std::move(found.detection);
     completion = std::move(found.completion);
     detection_s = part.lap();
@@ -231,29 +231,15 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull.mesh = head.skull;
     skull.source = "built-in template skull (head phantom)";
     skull.kind = "builtin";
-    if (landmark_mode == "auto") detect();
+    if (landmark_mode == "auto") detect(head);
   } else if (landmark_mode == "auto") {
     // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
-    // muscles are built (the skin's remeshing runs on one thread), and the halves are joined after.
-    TemplateSkin skin;
-    double skull_part_s = 0.0;
-    parallel_for(
-        0, 2,
-        [&](std::size_t part) {
-          if (part == 0) {
-            skin = make_template_skin(template_options);
-            return;
-          }
-          read_skull();
-          Stopwatch watch_skull;
-          head = make_template_skull(template_options);
-          skull_part_s = watch_skull.seconds();
-          detect();
-        },
-        1);
-    Stopwatch join;
-    head = join_template_head(std::move(head), std::move(skin));
-    template_s = head.seconds_skin + head.seconds_atlas + skull_part_s + join.seconds();
+    // muscles are built, and the halves are joined after.
+    head = make_template_head_beside(template_options, [&](const TemplateHead& skull_part) {
+      read_skull();
+      detect(skull_part);
+    });
+    template_s = head.seconds_skin + head.seconds_atlas + head.seconds_skull + head.seconds_landmarks;
   } else {
     parallel_for(
         0, 2, [&](std::size_t part) { part == 0 ? build_template() : read_skull(); }, 1);

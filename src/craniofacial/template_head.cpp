@@ -586,7 +586,8 @@ TemplateHead join_template_head(TemplateHead skull_part, TemplateSkin skin) {
   return head;
 }
 
-TemplateHead make_template_head(const TemplateHeadOptions& options) {
+TemplateHead make_template_head_beside(const TemplateHeadOptions& options,
+                                       const std::function<void(const TemplateHead& skull_part)>& with_skull) {
   check_options(options);
   Stopwatch watch;
   TemplateHead skull_part;
@@ -599,12 +600,17 @@ TemplateHead make_template_head(const TemplateHeadOptions& options) {
           skin = make_template_skin(options);
         } else {
           skull_part = make_template_skull(options);
+          if (with_skull) with_skull(skull_part);
         }
       },
       1);
   TemplateHead head = join_template_head(std::move(skull_part), std::move(skin));
   head.seconds = watch.seconds();
   return head;
+}
+
+TemplateHead make_template_head(const TemplateHeadOptions& options) {
+  return make_template_head_beside(options, nullptr);
 }
 
 int find_template_landmark(const TemplateHead& head, const std::string& name) {

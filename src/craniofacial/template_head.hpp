@@ -21,6 +21,7 @@
 /// each nose wing, stomion the midline point of the lips' parting, cheilion the lateral end of the phantom's
 /// mouth slit. Frame: the phantom's LPS millimetres (x left, y posterior, z superior; the face looks toward -y).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,11 @@ TemplateHead make_template_head(const TemplateHeadOptions& options = {});
 /// skin landmarks. join_template_head(make_template_skull(o), make_template_skin(o)) equals make_template_head(o).
 /// Throw as make_template_head; join_template_head throws InputError for an empty part.
 TemplateHead make_template_skull(const TemplateHeadOptions& options = {});
+/// make_template_head with `with_skull` called on the skull part (make_template_skull) while the skin is built
+/// beside it, before the two are joined: work that needs only the template's skull (reading a CT, automatic
+/// landmark detection) overlaps the skin's remeshing, atlas and muscles.
+TemplateHead make_template_head_beside(const TemplateHeadOptions& options,
+                                       const std::function<void(const TemplateHead& skull_part)>& with_skull);
 TemplateSkin make_template_skin(const TemplateHeadOptions& options = {});
 TemplateHead join_template_head(TemplateHead skull_part, TemplateSkin skin);
 
