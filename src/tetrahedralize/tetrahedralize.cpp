@@ -30,6 +30,7 @@
 #include "mesh_processing/repair_mesh.hpp"
 #include "spatial/winding_number.hpp"
 #include "volume/iso_surface.hpp"
+#include "volume/offset_surface.hpp"
 
 namespace forensim {
 namespace {
@@ -164,13 +165,25 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   // The manifold criterion keeps the boundary a closed 2-manifold; surfaces with near-contacts (CT skulls at
   // a few voxels' thickness) can need it off.
   const auto manifold = o.manifold_boundary ? p::manifold() : p::non_manifold();
+  // Refinement stops at max_nodes (Mesh_3's maximal_number_of_vertices) instead of filling the memory: the
+  // manifold criterion can refine without end near self-contacts of a scan.
+  CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
+  const auto limits = p::mesh_3_options(p::maximal_number_of_vertices = o.max_nodes, p::pointer_to_error_code = &error);
   if (o.perturb) {
     CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(),
                         p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg),
-                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
+                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), limits);
   } else {
     CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(),
-                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg));
+                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), limits);
+  }
+  if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
+    throw InputError("skin surface", "",
+                     "the mesher reached its limit of " + std::to_string(o.max_nodes) + " nodes at an edge length of " +
+                         std::to_string(edge) +
+                         " mm before the surfaces were resolved; surfaces that nearly touch themselves (lips, ears, "
+                         "eyelids of a scan) need the manifold criterion off (manifold_boundary, --non-manifold), or "
+                         "a coarser surface distance");
   }
 
   MeshPass pass;
@@ -250,6 +263,19 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   r.skin_volume_mm3 = enclosed_volume(skin);
   auto skin_winding = std::make_shared<const WindingNumber>(skin);
   std::vector<TriMesh> bones;
+  require_input(options.max_nodes >= 100, "tetrahedralize options", "max_nodes", "must be at least 100");
+  require_input(std::isfinite(options.bone_offset_mm) && options.bone_offset_mm >= 0.0, "tetrahedralize options",
+                "bone_offset_mm", "must be a finite depth >= 0");
+  if (options.bone_offset_mm > 0.0 && bone_inputs.empty()) {
+    InnerOffsetOptions offset;
+    offset.depth_mm = options.bone_offset_mm;
+    bones.push_back(inner_offset_surface(skin, offset, "skin surface"));
+    r.bone_volume_mm3 = enclosed_volume(bones.back());
+    char note[160];
+    std::snprintf(note, sizeof note, "bone: the skin's inner offset surface %.1f mm deep (%zu triangles)",
+                  options.bone_offset_mm, bones.back().triangle_count());
+    r.notes.emplace_back(note);
+  }
   for (std::size_t i = 0; i < bone_inputs.size(); ++i) {
     const std::string name = "bone surface " + std::to_string(i);
     TriMesh bone = prepare_surface(bone_inputs[i], name, options.close_openings, r.notes);

@@ -50,6 +50,12 @@ struct TetrahedralizeOptions {
   /// wrist) with a refined, faired cap; by default only scan-sized holes are filled and a surface with a large
   /// opening is rejected.
   bool close_openings = false;
+  /// > 0 and no bone surfaces given: the bone is the skin's inner offset surface this deep (mm;
+  /// volume/offset_surface.hpp), a stand-in skeleton for scans, which have no bones (0: none).
+  double bone_offset_mm = 0.0;
+  /// Meshing stops with an InputError when a pass reaches this many nodes (a guard against runaway refinement,
+  /// which would fill the memory: about 2 GB per million nodes).
+  std::size_t max_nodes = 3000000;
   /// Seed of Mesh_3's random choices (results are deterministic for a given seed and thread count).
   unsigned seed = 0;
 };

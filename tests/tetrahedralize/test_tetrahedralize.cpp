@@ -81,6 +81,20 @@ TEST(Tetrahedralize, BadInputsAreInputErrors) {
   EXPECT_THROW(tetrahedralize(skin, {TriMesh{}}, o), InputError);
   // No size.
   EXPECT_THROW(tetrahedralize(skin, {}, TetrahedralizeOptions{}), InputError);
+  // Refinement past the node limit stops with an error instead of filling the memory.
+  TetrahedralizeOptions fine = o;
+  fine.edge_length_mm = 1.0;
+  fine.max_nodes = 200;
+  try {
+    tetrahedralize(skin, {}, fine);
+    ADD_FAILURE() << "runaway refinement not stopped";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("limit of 200 nodes"), std::string::npos) << e.what();
+  }
+  // An offset bone where the body is too thin for it.
+  TetrahedralizeOptions offset = o;
+  offset.bone_offset_mm = 30.0;
+  EXPECT_THROW(tetrahedralize(skin, {}, offset), InputError);
   // Non-finite position.
   TriMesh nan = skin;
   nan.positions[0].x() = std::numeric_limits<double>::quiet_NaN();
