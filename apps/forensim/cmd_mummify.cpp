@@ -193,14 +193,12 @@ std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const Desiccat
 int run_mummify(const MummifyArgs& a) {
   Stopwatch watch;
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
-  const MummifyJob job = read_mummify_job(doc.root(), a);
+  MummifyJob job = read_mummify_job(doc.root(), a);
   doc.check_all_used();
   RunFolder run(a.out, "mummify");
-  run.set_job(doc.resolved());
 
   BodyModel body;
-  std::string kind = job.phantom;
-  // The pictures' titles: the phantom, or the model folder's name (the views stay those of `kind`).
+  // The pictures' titles: the phantom, or the model folder's name.
   std::string label = job.phantom;
   if (!job.model.empty()) {
     label = std::filesystem::path(job.model).lexically_normal().filename().string();
@@ -215,6 +213,14 @@ int run_mummify(const MummifyArgs& a) {
                 body.volume.vertex_count(), body.volume.tet_count(), format_seconds(watch.seconds()).c_str());
   }
   run.timings().add("body model", watch.seconds());
+  // Gravity as the body lay (the model's pose unless the job gives it): livor mortis settles along it and the
+  // ground lies across it.
+  if (!job.skin.gravity_given) job.skin.gravity = body.pose.gravity;
+  job.settings.environment.up = -job.skin.gravity;
+  const BodyPose pose = body.pose;
+  nlohmann::json resolved = doc.resolved();
+  resolved["skin"]["gravity"] = {job.skin.gravity.x(), job.skin.gravity.y(), job.skin.gravity.z()};
+  run.set_job(resolved);
   const DesiccationModel model = make_desiccation_model(std::move(body), job.settings);
   Stopwatch skin_setup;
   const MummifySkin skin(model.body, job.settings.tissue.initial_moisture, job.skin);
@@ -477,7 +483,7 @@ int run_mummify(const MummifyArgs& a) {
     Stopwatch picture_watch;
     RenderSettings settings;
     settings.width = settings.height = a.picture_size;
-    const DesiccationViews views = desiccation_views(kind);
+    const DesiccationViews views = desiccation_views(pose.views, ViewAxes{pose.up, pose.front});
     const DesiccationState start = initial_desiccation_state(model);
     std::vector<SheetCell> cells;
     const Image outside = render_moisture(model, state, views, false, settings);

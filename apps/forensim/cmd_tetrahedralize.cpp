@@ -15,6 +15,7 @@
 #include "image/png_io.hpp"
 #include "mesh_io/mesh_import.hpp"
 #include "mesh_processing/remesh_isotropic.hpp"
+#include "mesh_processing/repair_mesh.hpp"
 #include "phantoms/phantom.hpp"
 #include "phantoms/phantom_surface.hpp"
 #include "pictures.hpp"
@@ -29,6 +30,8 @@ namespace {
 struct TetArgs {
   std::string skin, unit = "auto", ct, phantom = "arm", size, output, model, render, axes = "lps";
   std::vector<std::string> bones;
+  std::vector<double> up, front, gravity;  ///< --up, --front, --gravity (empty: from --axes and the input)
+  double bone_offset = 0.0;
   double scale = 0.0;
   double skin_iso = 500.0, bone_iso = 1150.0;
   double edge = 0.0;
@@ -52,6 +55,32 @@ TriMesh model_skin(const TriMesh& skin, std::size_t triangles) {
   return remesh_isotropic(skin, edge, 3);
 }
 
+Vec3 unit_vector(const std::vector<double>& v, const char* option) {
+  const Vec3 x(v[0], v[1], v[2]);
+  if (!x.allFinite() || x.norm() < 1e-9)
+    throw Error(std::string(option) + " must be a finite, non-zero vector", ErrorKind::usage);
+  return x.normalized();
+}
+
+/// The pose of a model from a scan or CT: its axes from --up/--front or --axes; gravity from --gravity, else
+/// towards the back for a CT (scanned lying on its back), else down.
+BodyPose input_pose(const TetArgs& a) {
+  BodyPose pose;
+  pose.views = "head";
+  const ViewAxes axes = axes_from_name(a.axes);
+  pose.up = axes.up;
+  pose.front = axes.front;
+  if (!a.up.empty() || !a.front.empty()) {
+    if (a.up.empty() || a.front.empty()) throw Error("--up and --front go together", ErrorKind::usage);
+    pose.up = unit_vector(a.up, "--up");
+    pose.front = unit_vector(a.front, "--front");
+    if (std::abs(pose.up.dot(pose.front)) > 1e-3) throw Error("--up and --front must be orthogonal", ErrorKind::usage);
+    pose.front = (pose.front - pose.front.dot(pose.up) * pose.up).normalized();
+  }
+  pose.gravity = !a.gravity.empty() ? unit_vector(a.gravity, "--gravity") : a.ct.empty() ? -pose.up : -pose.front;
+  return pose;
+}
+
 int run_tetrahedralize(const TetArgs& a) {
   Stopwatch watch;
   TetrahedralizeOptions options;
@@ -64,12 +93,16 @@ int run_tetrahedralize(const TetArgs& a) {
   options.min_dihedral_deg = a.min_dihedral;
   options.seed = a.seed;
   options.close_openings = a.close_openings;
+  options.bone_offset_mm = a.bone_offset;
   options.manifold_boundary = !a.non_manifold;
   if (a.no_perturb) options.perturb = false;
   const bool phantom_input = a.skin.empty() && a.ct.empty();
   if (!a.size.empty() && !phantom_input) throw Error("--size applies to the built-in phantoms only", ErrorKind::usage);
   if (!a.size.empty() && (a.edge > 0 || a.nodes > 0 || a.tets > 0))
     throw Error("--size sets the mesh size; leave out --edge, --nodes and --tets", ErrorKind::usage);
+  if (phantom_input && (!a.up.empty() || !a.front.empty() || !a.gravity.empty() || a.bone_offset > 0.0))
+    throw Error("--up, --front, --gravity and --bone-offset apply to scans and CTs; phantoms have their own",
+                ErrorKind::usage);
   if (a.skin_triangles > 0 && phantom_input && !a.size.empty())
     throw Error("--size sets the skin size of a phantom; leave out --skin-triangles", ErrorKind::usage);
 
@@ -79,6 +112,7 @@ int run_tetrahedralize(const TetArgs& a) {
   BodyModel model;
   bool have_model = false;
   BodyViews views = body_views(a.phantom);
+  const BodyPose pose = phantom_input ? BodyPose::of_phantom(a.phantom) : input_pose(a);
   if (!a.size.empty()) {
     const PhantomModelSize size = phantom_model_size(a.phantom, a.size);
     std::printf("input: %s phantom, size '%s' (%zu volume nodes, %zu skin triangles)\n", a.phantom.c_str(),
@@ -110,7 +144,7 @@ int run_tetrahedralize(const TetArgs& a) {
       if (!a.model.empty() || !a.render.empty()) {
         skin = model_skin(ct_body_surfaces(grid, a.skin_iso, a.bone_iso).skin, a.skin_triangles);
       }
-      views = body_views("head", axes_from_name(a.axes));
+      views = body_views("head", ViewAxes{pose.up, pose.front});
     } else if (!a.skin.empty()) {
       const TriMesh input = import_mesh(a.skin, {a.unit, a.scale});
       std::vector<TriMesh> bones;
@@ -118,8 +152,18 @@ int run_tetrahedralize(const TetArgs& a) {
       std::printf("input: skin %s (%zu triangles), %zu bone surface(s)\n", a.skin.c_str(), input.triangle_count(),
                   bones.size());
       mesh = tetrahedralize(input, bones, options, &report);
-      if (!a.model.empty() || !a.render.empty()) skin = model_skin(input, a.skin_triangles);
-      views = body_views("head", axes_from_name(a.axes));
+      if (!a.model.empty() || !a.render.empty()) {
+        // With --close-openings the model's skin is closed the same way, so it covers the whole volume.
+        TriMesh closed = input;
+        if (a.close_openings) {
+          RepairOptions repair;
+          repair.max_hole_edges = 0;
+          repair.max_hole_diameter = 0.0;
+          repair_mesh(closed, repair);
+        }
+        skin = model_skin(closed, a.skin_triangles);
+      }
+      views = body_views("head", ViewAxes{pose.up, pose.front});
     } else {
       const auto phantom = make_phantom(a.phantom);
       const TriMesh phantom_skin = phantom_surface(*phantom, PhantomSurface::skin, a.phantom_voxel_mm);
@@ -132,6 +176,7 @@ int run_tetrahedralize(const TetArgs& a) {
     if (!a.model.empty()) {
       Stopwatch tracking_watch;
       model = make_body_model(mesh, skin);
+      model.pose = pose;
       have_model = true;
       const TrackingStats stats = tracking_stats(model.tracking);
       std::printf("tracking: %zu skin vertices, %.1f %% by ray, distance mean %.2f max %.2f mm (%s)\n", stats.count,
@@ -213,6 +258,19 @@ const RegisterCommand tetrahedralize_command{
       sub->add_option("-o,--out", a->output, "Output tet mesh (.msh, .vtu, .node) with quality per tet");
       sub->add_option("--model", a->model, "Write the body model (volume, skin, tracking) into this folder");
       sub->add_option("--axes", a->axes, "Axes of surface/CT input for pictures: lps (z up) or yup");
+      sub->add_option("--up", a->up, "The subject's up x y z in the input's frame (with --front; overrides --axes)")
+          ->expected(3);
+      sub->add_option("--front", a->front, "The subject's front x y z in the input's frame (with --up)")->expected(3);
+      sub->add_option("--gravity", a->gravity,
+                      "Direction of gravity x y z as the body lay, stored in the model for livor mortis (default: "
+                      "towards the back for a CT, which is scanned lying on its back; down for a surface)")
+          ->expected(3);
+      sub->add_option("--bone-offset", a->bone_offset,
+                      "With a skin and no bones: use the skin's inner offset surface this deep (mm) as the bone, a "
+                      "stand-in skeleton for scans")
+          ->check(CLI::Range(0.5, 200.0))
+          ->excludes("--bone")
+          ->excludes("--ct");
       sub->add_option("--render", a->render, "Also write a PNG sheet: the skin from two sides and the tets cut open");
       sub->add_option("--picture-size", a->picture_size, "Pixels per picture side")->check(CLI::Range(32, 4096));
       return [a]() { return run_tetrahedralize(*a); };

@@ -11,15 +11,17 @@ namespace forensim::cli {
 namespace {
 
 /// The "skin" object: livor mortis start state and shading (section 8.3).
-SkinShadingJob load_skin_job(const MummifyArgs& a, const JobNode& node, const Vec3& up) {
+SkinShadingJob load_skin_job(const MummifyArgs& a, const JobNode& node) {
   SkinShadingJob skin;
-  std::vector<double> g =
-      a.given("--gravity") ? a.gravity : node.get<std::vector<double>>("gravity", {-up[0], -up[1], -up[2]});
-  if (g.size() != 3) node.fail("gravity", "needs three numbers [x, y, z]");
-  skin.gravity = Vec3(g[0], g[1], g[2]);
-  if (!skin.gravity.allFinite() || skin.gravity.norm() < 1e-12)
-    node.fail("gravity", "must be a finite, non-zero vector");
-  skin.gravity.normalize();
+  skin.gravity_given = a.given("--gravity") || node.has("gravity");
+  if (skin.gravity_given) {
+    const std::vector<double> g = a.given("--gravity") ? a.gravity : node.require<std::vector<double>>("gravity");
+    if (g.size() != 3) node.fail("gravity", "needs three numbers [x, y, z]");
+    skin.gravity = Vec3(g[0], g[1], g[2]);
+    if (!skin.gravity.allFinite() || skin.gravity.norm() < 1e-12)
+      node.fail("gravity", "must be a finite, non-zero vector");
+    skin.gravity.normalize();
+  }
   skin.contact_distance_mm =
       a.given("--contact-mm") ? a.contact_mm : node.get_number("contact_distance_mm", a.contact_mm, -1.0, 1000.0);
   skin.map_resolution =
@@ -105,7 +107,7 @@ MummifyJob read_mummify_job(const JobNode& root, const MummifyArgs& a) {
   t.skin_permeance_m_per_s = tissue.get_number("skin_permeance_m_per_s", t.skin_permeance_m_per_s, 1e-9, 10.0);
   job.settings.deform = root.get<bool>("deform", true);
   job.deform_every = root.get_integer("deform_every_steps", job.deform_every, 1, 1000);
-  job.skin = load_skin_job(a, root.child("skin"), e.up);
+  job.skin = load_skin_job(a, root.child("skin"));
   job.skin_motion = load_skin_motion_job(a, root.child("skin"));
   job.figure8 = a.given("--figure8") ? a.figure8 : root.child("skin").get<bool>("figure8", a.figure8);
   return job;

@@ -26,6 +26,7 @@ namespace forensim::cli {
 /// Shading settings of a run (job file "skin" object; CLI flags for the common ones).
 struct SkinShadingJob {
   Vec3 gravity = Vec3(0, 0, -1);     ///< direction of gravity in the model frame (livor mortis settles along it)
+  bool gravity_given = false;        ///< false: the body model's pose gives the gravity (BodyPose::gravity)
   double contact_distance_mm = 3.0;  ///< skin within this of the supporting plane is pressure-pale; < 0: none
   int map_resolution = 512;          ///< texels per side of the baked colour maps (skins with UVs); 0: none
   LivorSettings livor;               ///< gravity is taken from `gravity`

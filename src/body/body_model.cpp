@@ -1,5 +1,6 @@
 #include "body/body_model.hpp"
 
+#include <cmath>
 #include <utility>
 
 #include "core/error.hpp"
@@ -24,7 +25,29 @@ void check_parts(const std::vector<int>& parts, std::size_t expected, std::size_
 
 }  // namespace
 
+BodyPose BodyPose::of_phantom(const std::string& phantom) {
+  BodyPose pose;
+  if (phantom == "head") {
+    pose.views = "head";
+    pose.front = -Vec3::UnitY();
+  }
+  return pose;
+}
+
+void BodyPose::validate(const std::string& source) const {
+  if (views != "arm" && views != "head") throw InputError(source, "pose views", "is '" + views + "', not arm or head");
+  const auto unit = [&](const Vec3& v, const char* name) {
+    if (!v.allFinite() || std::abs(v.norm() - 1.0) > 1e-6)
+      throw InputError(source, std::string("pose ") + name, "must be a finite unit vector");
+  };
+  unit(up, "up");
+  unit(front, "front");
+  unit(gravity, "gravity");
+  if (std::abs(up.dot(front)) > 1e-6) throw InputError(source, "pose up and front", "must be orthogonal");
+}
+
 void BodyModel::validate(const std::string& source) const {
+  pose.validate(source);
   volume.validate(source + " (volume)");
   skin.validate(source + " (skin)");
   const std::vector<TetFace> expected = tet_boundary_faces(volume);

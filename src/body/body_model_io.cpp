@@ -91,6 +91,11 @@ void write_body_model(const std::filesystem::path& folder, const BodyModel& mode
   json["volume"] = "volume.vtu";
   json["skin"] = "skin.vtu";
   json["parts"] = model.part_names;
+  const auto triple = [](const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  json["pose"] = {{"views", model.pose.views},
+                  {"up", triple(model.pose.up)},
+                  {"front", triple(model.pose.front)},
+                  {"gravity", triple(model.pose.gravity)}};
   json["counts"] = {{"volume_nodes", model.volume.vertex_count()},
                     {"tets", model.volume.tet_count()},
                     {"boundary_faces", model.boundary_faces.size()},
@@ -133,6 +138,27 @@ BodyModel read_body_model(const std::filesystem::path& folder) {
       if (!p.is_string()) throw InputError(source, "key 'parts'", "must be an array of names");
       model.part_names.push_back(p.get<std::string>());
     }
+  }
+  if (json.contains("pose")) {
+    const nlohmann::json& pose = json["pose"];
+    if (!pose.is_object()) throw InputError(source, "key 'pose'", "must be an object");
+    for (const auto& [key, value] : pose.items())
+      if (key != "views" && key != "up" && key != "front" && key != "gravity")
+        throw InputError(source, "key 'pose/" + key + "'", "is unknown (known: views, up, front, gravity)");
+    if (pose.contains("views")) {
+      if (!pose["views"].is_string()) throw InputError(source, "key 'pose/views'", "must be a string");
+      model.pose.views = pose["views"].get<std::string>();
+    }
+    const auto vector_at = [&](const char* key, Vec3& v) {
+      if (!pose.contains(key)) return;
+      const nlohmann::json& a = pose[key];
+      if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+        throw InputError(source, std::string("key 'pose/") + key + "'", "must be three numbers [x, y, z]");
+      v = Vec3(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+    };
+    vector_at("up", model.pose.up);
+    vector_at("front", model.pose.front);
+    vector_at("gravity", model.pose.gravity);
   }
   const double part_max = static_cast<double>(model.part_names.size()) - 1.0;
 

@@ -1,7 +1,8 @@
 #pragma once
 /// Body model folders: how a body model (tet volume, skin, tracking connections, parts) is stored between
 /// `forensim tetrahedralize --model` and the simulations that read it. A folder holds
-///   model.json  format name and version, units (mm), file names, part names, counts
+///   model.json  format name and version, units (mm), file names, part names, counts, and the pose ("pose":
+///               {"views": "arm"|"head", "up", "front", "gravity": [x, y, z]}; absent: BodyPose's defaults)
 ///   volume.vtu  the tets: cell arrays "label" (TissueLabel) and "part" (index into the part names)
 ///   skin.vtu    the skin triangles with point arrays "Normals", "part" and the tracking connections:
 ///               "tracking_face" (boundary face index), "tracking_nodes" (3 node indices), "tracking_weights"

@@ -123,6 +123,7 @@ BodyModel make_phantom_model(const PhantomModelSize& size, const TetrahedralizeO
 
   BodyModel model = make_body_model(std::move(volume), std::move(skin), phantom->part_names(),
                                     [&](const Vec3& p) { return phantom->part_at(p); });
+  model.pose = BodyPose::of_phantom(size.phantom);
   r.tracking = tracking_stats(model.tracking);
   r.seconds_tracking = watch.lap();
   return model;

@@ -40,12 +40,13 @@ Image finish(Scene scene, const DesiccationViews& views, ViewName view, const Re
 
 }  // namespace
 
-DesiccationViews desiccation_views(const std::string& phantom) {
+DesiccationViews desiccation_views(const std::string& layout, const ViewAxes& axes) {
   DesiccationViews v;
-  if (phantom == "arm") return v;
-  v.axes = ViewAxes{};
+  v.axes = axes;
+  v.cut_normal = axes.up;
+  if (layout == "arm") return v;
   v.outside = ViewName::left;
-  v.cut_normal = Vec3::UnitX();
+  v.cut_normal = axes.left();
   v.cut = ViewName::left;
   return v;
 }

@@ -20,9 +20,9 @@ struct DesiccationViews {
   ViewName cut = ViewName::top;
 };
 
-/// Views for a phantom by name: the arm from the back of the hand, cut dorsally through radius and ulna;
-/// the head from the left, cut through the midsagittal plane.
-DesiccationViews desiccation_views(const std::string& phantom);
+/// Views by layout (BodyPose::views) in a body's axes: "arm" from above (the back of the hand, axes.up), cut
+/// across up through radius and ulna; "head" from the left, cut through the midsagittal plane.
+DesiccationViews desiccation_views(const std::string& layout, const ViewAxes& axes);
 
 /// The moisture field of `state` on the outside (cut = false) or on the half of the volume behind the cut
 /// plane (cut = true), display-referred RGBA.

@@ -5,8 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "body/body_model_io.hpp"
 #include "cli/cli_runner.hpp"
 #include "core/atomic_file.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "support/test_support.hpp"
 
 using namespace forensim;
@@ -119,6 +121,47 @@ TEST(Cli, TetrahedralizeWritesTetsModelAndPicture) {
   EXPECT_GT(model["counts"]["skin_vertices"].get<int>(), 150);
   EXPECT_TRUE(std::filesystem::exists(dir / "model" / "skin.vtu"));
   EXPECT_GT(png_size(dir / "cube.png").first, 3 * 96) << "three pictures side by side";
+}
+
+// A scan without bones: its inner offset surface is the bone; the model stores the given pose, and forensim mummify
+// takes its gravity from it (livor mortis and the ground) unless the job gives one.
+TEST(Cli, TetrahedralizeStoresThePoseAndAnOffsetBoneThatMummifyUses) {
+  const auto dir = test::scratch_dir("cli_tet_pose");
+  for (const char* f : {"model", "run", "run_own_gravity"}) std::filesystem::remove_all(dir / f);
+  write_cube_obj(dir / "cube.obj", 60.0);
+  const auto result = run_cli(
+      "tetrahedralize --skin " + (dir / "cube.obj").string() +
+      " --edge 10 --surface-distance 0.1 --no-perturb --skin-triangles 300 --bone-offset 10 --up 0 1 0 --front 0 0 1"
+      " --gravity 1 0 0 --model " +
+      (dir / "model").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("inner offset surface 10.0 mm deep"), std::string::npos) << result.output;
+  const BodyModel model = read_body_model(dir / "model");
+  EXPECT_EQ(model.pose.views, "head");
+  EXPECT_EQ(model.pose.up, Vec3::UnitY());
+  EXPECT_EQ(model.pose.front, Vec3::UnitZ());
+  EXPECT_EQ(model.pose.gravity, Vec3::UnitX());
+  // The bone is the 40 mm cube 10 mm inside (its level set rounds the edges a little).
+  const double bone = tet_mesh_volume(model.volume, tissue_bone);
+  EXPECT_NEAR(bone, 40.0 * 40.0 * 40.0, 0.12 * 40.0 * 40.0 * 40.0);
+
+  const std::string common = " --days 0.5 --frames 1 --step-hours 12 --no-pictures --map-size 0";
+  auto r = run_cli("mummify --model " + (dir / "model").string() + common + " -o " + (dir / "run").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto record = nlohmann::json::parse(read_file(dir / "run" / "run.json"));
+  EXPECT_EQ(record["job"]["skin"]["gravity"], nlohmann::json::array({1.0, 0.0, 0.0})) << record["job"].dump();
+  r = run_cli("mummify --model " + (dir / "model").string() + common + " --gravity 0 0 -2 -o " +
+              (dir / "run_own_gravity").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto own = nlohmann::json::parse(read_file(dir / "run_own_gravity" / "run.json"));
+  EXPECT_EQ(own["job"]["skin"]["gravity"], nlohmann::json::array({0.0, 0.0, -1.0})) << own["job"].dump();
+
+  // Bad poses are usage errors, and phantoms have their own.
+  EXPECT_EQ(run_cli("tetrahedralize --skin " + (dir / "cube.obj").string() + " --edge 8 --up 0 1 0").exit_code, 2);
+  EXPECT_EQ(
+      run_cli("tetrahedralize --skin " + (dir / "cube.obj").string() + " --edge 8 --up 0 1 0 --front 0 1 0").exit_code,
+      2);
+  EXPECT_EQ(run_cli("tetrahedralize --phantom arm --edge 20 --gravity 0 0 -1").exit_code, 2);
 }
 
 TEST(Cli, TetrahedralizeRejectsBadInputWithoutWriting) {
