@@ -37,5 +37,20 @@ TEST(Demo, WritesReportWithPicturesAndTimings) {
   if (!test::data_path("ct-head-headsq/quarter.nhdr").empty()) {
     EXPECT_TRUE(record["facts"]["ct_headsq"]["skin_closed"].get<bool>());
     EXPECT_TRUE(record["facts"]["ct_headsq"]["bone_closed"].get<bool>());
+    // The CT head mummified: it lost water and shrank, no tet turned over, no skin triangle either.
+    const auto ct = nlohmann::json::parse(read_file(dir / "mummify_ct_headsq" / "run.json"))["facts"];
+    EXPECT_LT(ct["water_percent"].get<double>(), 90.0);
+    EXPECT_LT(ct["volume_percent"].get<double>(), 98.0);
+    EXPECT_EQ(ct["inverted_tets"], 0);
+    EXPECT_EQ(ct["skin_inverted_triangles"], 0);
+    // Lying on its back: the model's gravity points to the back of the head.
+    const auto model = nlohmann::json::parse(read_file(dir / "model_ct_headsq" / "model.json"));
+    EXPECT_GT(model["pose"]["gravity"][1].get<double>(), 0.99);
+  }
+  if (!test::data_path("head-scan-lee-perry-smith/LeePerrySmith.glb").empty()) {
+    // The scan mummified over its offset-surface bone.
+    const auto scan = nlohmann::json::parse(read_file(dir / "mummify_head_scan" / "run.json"))["facts"];
+    EXPECT_LT(scan["water_percent"].get<double>(), 90.0);
+    EXPECT_EQ(scan["inverted_tets"], 0);
   }
 }
