@@ -417,8 +417,15 @@ SymmetryPlaneFit fit_target_symmetry(const TriMesh& target, const ClosestPointQu
   best.rms_mm = std::numeric_limits<double>::infinity();
   std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   for (int k = 0; k < 3; ++k) normals.push_back(et.eigenvectors().col(k));
-  for (const Vec3& n : normals) {
-    const SymmetryPlaneFit fit = fit_symmetry_plane(target, query, Plane{mt.centroid, n}, o);
+  // The fits are independent: run side by side, the best taken in the normals' order (the earliest wins ties).
+  std::vector<SymmetryPlaneFit> fits(normals.size());
+  parallel_for(
+      0, normals.size(),
+      [&](std::size_t k) {
+        fits[k] = fit_symmetry_plane(target, query, Plane{mt.centroid, normals[k]}, o);
+      },
+      1);
+  for (const SymmetryPlaneFit& fit : fits) {
     if (fit.rms_mm < best.rms_mm) best = fit;
   }
   return best;
@@ -466,11 +473,20 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   Plane reference_plane;
   std::vector<Mat3> rotations;
   if (options.reference_midsagittal) {
-    plane = fit_target_symmetry(target, surface.query).plane;
-    // The reference's plane refined by the same fit, so that both are the planes of best symmetry.
-    reference_plane =
-        fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal, symmetry_options())
-            .plane;
+    // The target's plane, and the reference's refined by the same fit so that both are the planes of best
+    // symmetry: independent, so fitted side by side.
+    parallel_for(
+        0, 2,
+        [&](std::size_t part) {
+          if (part == 0) {
+            plane = fit_target_symmetry(target, surface.query).plane;
+          } else {
+            reference_plane = fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal,
+                                                 symmetry_options())
+                                  .plane;
+          }
+        },
+        1);
     const Vec3 nr = reference_plane.normal;
     for (double sign : {1.0, -1.0}) {
       const Mat3 base = rotation_between(nr, sign * plane->normal);
@@ -516,11 +532,16 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const std::vector<Vec3> coarse_targets =
       target_samples(target, surface, std::min<std::size_t>(options.max_samples, 250));
   const TwoWay coarse_problem{surface, reference_surface, coarse, coarse_targets};
-  std::vector<IcpResult> runs;
-  for (const Similarity& start : starts) {
-    runs.push_back(scaled_icp(coarse_problem, start, size, options, std::min(options.max_iterations, 10),
-                              plane ? &*plane : nullptr));
-  }
+  // The runs from each start (and below, from each candidate and basin) are independent: run side by side, each
+  // kept in its start's place, so the ranking does not depend on the thread count.
+  const Plane* const on_plane = plane ? &*plane : nullptr;
+  std::vector<IcpResult> runs(starts.size());
+  parallel_for(
+      0, starts.size(),
+      [&](std::size_t k) {
+        runs[k] = scaled_icp(coarse_problem, starts[k], size, options, std::min(options.max_iterations, 10), on_plane);
+      },
+      1);
   std::vector<std::size_t> order(runs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].rms < runs[b].rms; });
@@ -529,12 +550,14 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const std::size_t further = std::min<std::size_t>(
       std::max<std::size_t>({3, options.final_candidates, options.basin_candidates, options.refined_starts}),
       order.size());
-  std::vector<IcpResult> candidates;
-  for (std::size_t k = 0; k < further; ++k) {
-    candidates.push_back(scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                    std::min(options.max_iterations, options.refine_iterations),
-                                    plane ? &*plane : nullptr));
-  }
+  std::vector<IcpResult> candidates(further);
+  parallel_for(
+      0, further,
+      [&](std::size_t k) {
+        candidates[k] = scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
+                                   std::min(options.max_iterations, options.refine_iterations), on_plane);
+      },
+      1);
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const IcpResult& a, const IcpResult& b) { return a.rms < b.rms; });
   // One candidate per basin (the lowest two-way RMS of each), at most basin_candidates: on few samples the two-way
@@ -550,12 +573,14 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     const std::vector<Vec3> medium_targets =
         target_samples(target, surface, std::min(options.max_samples, options.basin_samples) / 2);
     const TwoWay medium_problem{surface, reference_surface, medium, medium_targets};
-    std::vector<IcpResult> settled;
-    for (std::size_t b : basins) {
-      settled.push_back(scaled_icp(medium_problem, candidates[b].similarity, size, options,
-                                   std::min(options.max_iterations, options.basin_iterations),
-                                   plane ? &*plane : nullptr));
-    }
+    std::vector<IcpResult> settled(basins.size());
+    parallel_for(
+        0, basins.size(),
+        [&](std::size_t k) {
+          settled[k] = scaled_icp(medium_problem, candidates[basins[k]].similarity, size, options,
+                                  std::min(options.max_iterations, options.basin_iterations), on_plane);
+        },
+        1);
     std::vector<double> forward(settled.size());
     for (std::size_t k = 0; k < settled.size(); ++k) forward[k] = settled[k].forward_rms;
     std::vector<std::size_t> by_forward(settled.size());
