@@ -238,9 +238,12 @@ TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const Similar
 /// `plane`: when not null, the target's symmetry plane that the reference's stays on (only the turn about its
 /// normal, the scale about a point on it and shifts within it are free). `settle`: stop at the noise floor
 /// (options.stall_iterations) and keep the lowest-RMS iterate, for the final run; the brief runs that rank the
-/// starts take their fixed iterations.
+/// starts take their fixed iterations. `first`: when not null, the pairs of `problem` under `start` (found before),
+/// used for the first iteration instead of searching them again. `last`: when not null, receives the pairs under
+/// the returned similarity (left empty when that is an earlier iterate).
 IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const SimilarityRegistrationOptions& options,
-                     int max_iterations, const Plane* plane = nullptr, bool settle = false) {
+                     int max_iterations, const Plane* plane = nullptr, bool settle = false,
+                     const TwoWayPairs* first = nullptr, std::optional<TwoWayPairs>* last = nullptr) {
   Eigen::Matrix<double, 7, 4> basis = Eigen::Matrix<double, 7, 4>::Zero();
   if (plane) {
     const Vec3 n = plane->normal.normalized();
@@ -259,7 +262,11 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
   const double w2 = options.point_weight * options.point_weight;
   TwoWayPairs p;
   for (int it = 0; it < max_iterations; ++it) {
-    p = pairs_of(problem, result.similarity, options, it > 0 ? &p : nullptr);
+    if (it == 0 && first) {
+      p = *first;
+    } else {
+      p = pairs_of(problem, result.similarity, options, it > 0 ? &p : nullptr);
+    }
     result.rms = p.rms;
     result.forward_rms = p.forward.kept_count > 0 ? p.forward.trimmed_rms : std::numeric_limits<double>::infinity();
     result.iterations = it;
@@ -330,9 +337,17 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
     result.similarity = next;
     if (angle + std::abs(sigma) + tau.norm() / size < options.tolerance) break;
   }
-  const TwoWayPairs last = pairs_of(problem, result.similarity, options, max_iterations > 0 ? &p : nullptr);
-  result.rms = last.rms;
-  result.forward_rms = last.forward.kept_count > 0 ? last.forward.trimmed_rms : std::numeric_limits<double>::infinity();
+  TwoWayPairs final_pairs = pairs_of(problem, result.similarity, options, max_iterations > 0 ? &p : nullptr);
+  result.rms = final_pairs.rms;
+  result.forward_rms =
+      final_pairs.forward.kept_count > 0 ? final_pairs.forward.trimmed_rms : std::numeric_limits<double>::infinity();
+  if (last) {
+    if (best.rms < result.rms) {
+      last->reset();
+    } else {
+      *last = std::move(final_pairs);
+    }
+  }
   if (best.rms < result.rms) {
     const int iterations = result.iterations;
     result = best;
@@ -535,11 +550,14 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   // The runs from each start (and below, from each candidate and basin) are independent: run side by side, each
   // kept in its start's place, so the ranking does not depend on the thread count.
   const Plane* const on_plane = plane ? &*plane : nullptr;
+  // Each run's last pairs start its refined run below (the same problem and map: the same pairs).
   std::vector<IcpResult> runs(starts.size());
+  std::vector<std::optional<TwoWayPairs>> run_pairs(starts.size());
   parallel_for(
       0, starts.size(),
       [&](std::size_t k) {
-        runs[k] = scaled_icp(coarse_problem, starts[k], size, options, std::min(options.max_iterations, 10), on_plane);
+        runs[k] = scaled_icp(coarse_problem, starts[k], size, options, std::min(options.max_iterations, 10), on_plane,
+                             false, nullptr, &run_pairs[k]);
       },
       1);
   std::vector<std::size_t> order(runs.size());
@@ -554,8 +572,10 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   parallel_for(
       0, further,
       [&](std::size_t k) {
+        const std::optional<TwoWayPairs>& known = run_pairs[order[k]];
         candidates[k] = scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                   std::min(options.max_iterations, options.refine_iterations), on_plane);
+                                   std::min(options.max_iterations, options.refine_iterations), on_plane, false,
+                                   known ? &*known : nullptr);
       },
       1);
   std::stable_sort(candidates.begin(), candidates.end(),
