@@ -238,9 +238,12 @@ TwoWayPairs pairs_of(const TwoWay& problem, const Similarity& map, const Similar
 /// `plane`: when not null, the target's symmetry plane that the reference's stays on (only the turn about its
 /// normal, the scale about a point on it and shifts within it are free). `settle`: stop at the noise floor
 /// (options.stall_iterations) and keep the lowest-RMS iterate, for the final run; the brief runs that rank the
-/// starts take their fixed iterations.
+/// starts take their fixed iterations. `first`: when not null, the pairs of `problem` under `start` (found before),
+/// used for the first iteration instead of searching them again. `last`: when not null, receives the pairs under
+/// the returned similarity (left empty when that is an earlier iterate).
 IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const SimilarityRegistrationOptions& options,
-                     int max_iterations, const Plane* plane = nullptr, bool settle = false) {
+                     int max_iterations, const Plane* plane = nullptr, bool settle = false,
+                     const TwoWayPairs* first = nullptr, std::optional<TwoWayPairs>* last = nullptr) {
   Eigen::Matrix<double, 7, 4> basis = Eigen::Matrix<double, 7, 4>::Zero();
   if (plane) {
     const Vec3 n = plane->normal.normalized();
@@ -259,7 +262,11 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
   const double w2 = options.point_weight * options.point_weight;
   TwoWayPairs p;
   for (int it = 0; it < max_iterations; ++it) {
-    p = pairs_of(problem, result.similarity, options, it > 0 ? &p : nullptr);
+    if (it == 0 && first) {
+      p = *first;
+    } else {
+      p = pairs_of(problem, result.similarity, options, it > 0 ? &p : nullptr);
+    }
     result.rms = p.rms;
     result.forward_rms = p.forward.kept_count > 0 ? p.forward.trimmed_rms : std::numeric_limits<double>::infinity();
     result.iterations = it;
@@ -330,9 +337,17 @@ IcpResult scaled_icp(const TwoWay& problem, Similarity start, double size, const
     result.similarity = next;
     if (angle + std::abs(sigma) + tau.norm() / size < options.tolerance) break;
   }
-  const TwoWayPairs last = pairs_of(problem, result.similarity, options, max_iterations > 0 ? &p : nullptr);
-  result.rms = last.rms;
-  result.forward_rms = last.forward.kept_count > 0 ? last.forward.trimmed_rms : std::numeric_limits<double>::infinity();
+  TwoWayPairs final_pairs = pairs_of(problem, result.similarity, options, max_iterations > 0 ? &p : nullptr);
+  result.rms = final_pairs.rms;
+  result.forward_rms =
+      final_pairs.forward.kept_count > 0 ? final_pairs.forward.trimmed_rms : std::numeric_limits<double>::infinity();
+  if (last) {
+    if (best.rms < result.rms) {
+      last->reset();
+    } else {
+      *last = std::move(final_pairs);
+    }
+  }
   if (best.rms < result.rms) {
     const int iterations = result.iterations;
     result = best;
@@ -417,8 +432,15 @@ SymmetryPlaneFit fit_target_symmetry(const TriMesh& target, const ClosestPointQu
   best.rms_mm = std::numeric_limits<double>::infinity();
   std::vector<Vec3> normals = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   for (int k = 0; k < 3; ++k) normals.push_back(et.eigenvectors().col(k));
-  for (const Vec3& n : normals) {
-    const SymmetryPlaneFit fit = fit_symmetry_plane(target, query, Plane{mt.centroid, n}, o);
+  // The fits are independent: run side by side, the best taken in the normals' order (the earliest wins ties).
+  std::vector<SymmetryPlaneFit> fits(normals.size());
+  parallel_for(
+      0, normals.size(),
+      [&](std::size_t k) {
+        fits[k] = fit_symmetry_plane(target, query, Plane{mt.centroid, normals[k]}, o);
+      },
+      1);
+  for (const SymmetryPlaneFit& fit : fits) {
     if (fit.rms_mm < best.rms_mm) best = fit;
   }
   return best;
@@ -466,11 +488,20 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   Plane reference_plane;
   std::vector<Mat3> rotations;
   if (options.reference_midsagittal) {
-    plane = fit_target_symmetry(target, surface.query).plane;
-    // The reference's plane refined by the same fit, so that both are the planes of best symmetry.
-    reference_plane =
-        fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal, symmetry_options())
-            .plane;
+    // The target's plane, and the reference's refined by the same fit so that both are the planes of best
+    // symmetry: independent, so fitted side by side.
+    parallel_for(
+        0, 2,
+        [&](std::size_t part) {
+          if (part == 0) {
+            plane = fit_target_symmetry(target, surface.query).plane;
+          } else {
+            reference_plane = fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal,
+                                                 symmetry_options())
+                                  .plane;
+          }
+        },
+        1);
     const Vec3 nr = reference_plane.normal;
     for (double sign : {1.0, -1.0}) {
       const Mat3 base = rotation_between(nr, sign * plane->normal);
@@ -516,11 +547,19 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const std::vector<Vec3> coarse_targets =
       target_samples(target, surface, std::min<std::size_t>(options.max_samples, 250));
   const TwoWay coarse_problem{surface, reference_surface, coarse, coarse_targets};
-  std::vector<IcpResult> runs;
-  for (const Similarity& start : starts) {
-    runs.push_back(scaled_icp(coarse_problem, start, size, options, std::min(options.max_iterations, 10),
-                              plane ? &*plane : nullptr));
-  }
+  // The runs from each start (and below, from each candidate and basin) are independent: run side by side, each
+  // kept in its start's place, so the ranking does not depend on the thread count.
+  const Plane* const on_plane = plane ? &*plane : nullptr;
+  // Each run's last pairs start its refined run below (the same problem and map: the same pairs).
+  std::vector<IcpResult> runs(starts.size());
+  std::vector<std::optional<TwoWayPairs>> run_pairs(starts.size());
+  parallel_for(
+      0, starts.size(),
+      [&](std::size_t k) {
+        runs[k] = scaled_icp(coarse_problem, starts[k], size, options, std::min(options.max_iterations, 10), on_plane,
+                             false, nullptr, &run_pairs[k]);
+      },
+      1);
   std::vector<std::size_t> order(runs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].rms < runs[b].rms; });
@@ -529,12 +568,16 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   const std::size_t further = std::min<std::size_t>(
       std::max<std::size_t>({3, options.final_candidates, options.basin_candidates, options.refined_starts}),
       order.size());
-  std::vector<IcpResult> candidates;
-  for (std::size_t k = 0; k < further; ++k) {
-    candidates.push_back(scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
-                                    std::min(options.max_iterations, options.refine_iterations),
-                                    plane ? &*plane : nullptr));
-  }
+  std::vector<IcpResult> candidates(further);
+  parallel_for(
+      0, further,
+      [&](std::size_t k) {
+        const std::optional<TwoWayPairs>& known = run_pairs[order[k]];
+        candidates[k] = scaled_icp(coarse_problem, runs[order[k]].similarity, size, options,
+                                   std::min(options.max_iterations, options.refine_iterations), on_plane, false,
+                                   known ? &*known : nullptr);
+      },
+      1);
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const IcpResult& a, const IcpResult& b) { return a.rms < b.rms; });
   // One candidate per basin (the lowest two-way RMS of each), at most basin_candidates: on few samples the two-way
@@ -550,12 +593,14 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
     const std::vector<Vec3> medium_targets =
         target_samples(target, surface, std::min(options.max_samples, options.basin_samples) / 2);
     const TwoWay medium_problem{surface, reference_surface, medium, medium_targets};
-    std::vector<IcpResult> settled;
-    for (std::size_t b : basins) {
-      settled.push_back(scaled_icp(medium_problem, candidates[b].similarity, size, options,
-                                   std::min(options.max_iterations, options.basin_iterations),
-                                   plane ? &*plane : nullptr));
-    }
+    std::vector<IcpResult> settled(basins.size());
+    parallel_for(
+        0, basins.size(),
+        [&](std::size_t k) {
+          settled[k] = scaled_icp(medium_problem, candidates[basins[k]].similarity, size, options,
+                                  std::min(options.max_iterations, options.basin_iterations), on_plane);
+        },
+        1);
     std::vector<double> forward(settled.size());
     for (std::size_t k = 0; k < settled.size(); ++k) forward[k] = settled[k].forward_rms;
     std::vector<std::size_t> by_forward(settled.size());
@@ -604,6 +649,9 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   if (target_plane_out) *target_plane_out = plane;
   return fine;
 }
+
+/// Columns of the non-rigid stage's normal matrix computed per task.
+constexpr std::size_t kNodeBlock = 24;
 
 double gaussian(double squared_distance, double sigma) {
   return std::exp(-squared_distance / (2.0 * sigma * sigma));
@@ -743,7 +791,18 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
           d.row(row) = target_u.transpose();
           if (!c.kept[i]) am.row(row).setZero();
         }
-        Eigen::MatrixXd h = am.transpose() * am;
+        // A^T A in column blocks side by side (a fixed split, whatever the thread count): the one dense product
+        // of the stage, which would otherwise hold one core while the other waits.
+        Eigen::MatrixXd h(static_cast<Eigen::Index>(n_nodes), static_cast<Eigen::Index>(n_nodes));
+        const std::size_t column_blocks = (n_nodes + kNodeBlock - 1) / kNodeBlock;
+        parallel_for(
+            0, column_blocks,
+            [&](std::size_t b) {
+              const auto j0 = static_cast<Eigen::Index>(b * kNodeBlock);
+              const auto nb = static_cast<Eigen::Index>(std::min(kNodeBlock, n_nodes - b * kNodeBlock));
+              h.middleCols(j0, nb).noalias() = am.transpose() * am.middleCols(j0, nb);
+            },
+            1);
         const double lambda = stiffness * h.trace() / k.trace();
         h += lambda * k;
         h.diagonal().array() += 1e-12 * h.trace() / static_cast<double>(n_nodes);
