@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <memory>
@@ -34,6 +35,10 @@ void parallel_for(std::size_t begin, std::size_t end, const std::function<void(s
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
                     });
+}
+
+void parallel_invoke(const std::function<void()>& first, const std::function<void()>& second) {
+  tbb::parallel_invoke(first, second);
 }
 
 void parallel_for_chunks(std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body,

@@ -18,6 +18,10 @@ int thread_count();
 void parallel_for(std::size_t begin, std::size_t end, const std::function<void(std::size_t)>& body,
                   std::size_t grain = 256);
 
+/// Calls first() and second() side by side (two independent pieces of work), returning when both are done. An
+/// exception thrown by either is rethrown here.
+void parallel_invoke(const std::function<void()>& first, const std::function<void()>& second);
+
 /// Calls body(chunk_begin, chunk_end) over [begin, end) cut into chunks of at most `grain`.
 void parallel_for_chunks(std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body,
                          std::size_t grain = 1024);

@@ -59,13 +59,11 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
   // The violation counter's trees (the skull's winding numbers and closest points) are built beside the ray
   // caster and the template's interpolated landmarks.
   const bool counting = options.count_violations || options.correction.rounds > 0;
-  parallel_for(
-      0, 2,
-      [&](std::size_t part) {
-        if (part == 0) {
-          if (counting) m_counter->prepare();
-          return;
-        }
+  parallel_invoke(
+      [&] {
+        if (counting) m_counter->prepare();
+      },
+      [&] {
         m_skull_rays = std::make_unique<RayCaster>(m_skull);
         if (options.interpolated_landmarks) {
           // The same generators on the template's skull (with the template's own depths) and on the target's.
@@ -83,8 +81,7 @@ TemplateFit::TemplateFit(const TemplateHead& head, const TriMesh& skull, const L
           m_template_interpolated_names = t.names;
           m_template_interpolated_skin = skin_points_along_normals(template_skin, t);
         }
-      },
-      1);
+      });
 
   // All points the warp moves: the skin's vertices, the skin-only landmarks, then the muscle grids.
   std::vector<Vec3> points = head.skin.positions;

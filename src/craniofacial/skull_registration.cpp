@@ -490,18 +490,12 @@ IcpResult similarity_stage(const TriMesh& reference, const TriMesh& target, cons
   if (options.reference_midsagittal) {
     // The target's plane, and the reference's refined by the same fit so that both are the planes of best
     // symmetry: independent, so fitted side by side.
-    parallel_for(
-        0, 2,
-        [&](std::size_t part) {
-          if (part == 0) {
-            plane = fit_target_symmetry(target, surface.query).plane;
-          } else {
-            reference_plane = fit_symmetry_plane(reference, reference_surface.query, *options.reference_midsagittal,
-                                                 symmetry_options())
-                                  .plane;
-          }
-        },
-        1);
+    parallel_invoke([&] { plane = fit_target_symmetry(target, surface.query).plane; },
+                    [&] {
+                      reference_plane = fit_symmetry_plane(reference, reference_surface.query,
+                                                           *options.reference_midsagittal, symmetry_options())
+                                            .plane;
+                    });
     const Vec3 nr = reference_plane.normal;
     for (double sign : {1.0, -1.0}) {
       const Mat3 base = rotation_between(nr, sign * plane->normal);

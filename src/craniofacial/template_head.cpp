@@ -598,17 +598,11 @@ TemplateHead make_template_head_beside(const TemplateHeadOptions& options,
   TemplateHead skull_part;
   TemplateSkin skin;
   // The skin and the skull are independent: built side by side (the skin's remeshing runs on one thread).
-  parallel_for(
-      0, 2,
-      [&](std::size_t part) {
-        if (part == 0) {
-          skin = make_template_skin(options);
-        } else {
-          skull_part = make_template_skull(options);
-          if (with_skull) with_skull(skull_part);
-        }
-      },
-      1);
+  parallel_invoke([&] { skin = make_template_skin(options); },
+                  [&] {
+                    skull_part = make_template_skull(options);
+                    if (with_skull) with_skull(skull_part);
+                  });
   TemplateHead head = join_template_head(std::move(skull_part), std::move(skin));
   head.seconds = watch.seconds();
   return head;

@@ -134,16 +134,7 @@ void WindingNumber::build(int index, int begin, int end, std::vector<Vec3>& cent
   const int left = index + 1;
   const int right = left + subtree_nodes(middle - begin);
   if (end - begin > parallel_build_size) {
-    parallel_for(
-        0, 2,
-        [&](std::size_t half) {
-          if (half == 0) {
-            build(left, begin, middle, centroids);
-          } else {
-            build(right, middle, end, centroids);
-          }
-        },
-        1);
+    parallel_invoke([&] { build(left, begin, middle, centroids); }, [&] { build(right, middle, end, centroids); });
   } else {
     build(left, begin, middle, centroids);
     build(right, middle, end, centroids);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -76,4 +77,15 @@ TEST(Parallel, ForVisitsEveryIndexOnce) {
   parallel_for(
       0, visits.size(), [&](std::size_t i) { visits[i] += 1; }, 17);
   for (int v : visits) ASSERT_EQ(v, 1);
+}
+
+TEST(Parallel, InvokeRunsBothAndRethrows) {
+  for (int threads : {1, 2}) {
+    set_thread_count(threads);
+    int a = 0, b = 0;
+    parallel_invoke([&] { a = 1; }, [&] { b = 2; });
+    EXPECT_EQ(a + b, 3) << threads << " threads";
+    EXPECT_THROW(parallel_invoke([] {}, [] { throw std::runtime_error("second"); }), std::runtime_error);
+  }
+  set_thread_count(0);
 }
