@@ -10,6 +10,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "volume/taubin_smooth.hpp"
+#include "volume/vdb_polygons.hpp"
 
 namespace forensim {
 
@@ -54,28 +55,13 @@ TriMesh extract_iso_surface(const ScalarGrid& input, double iso_value, const Iso
   openvdb::tools::volumeToMesh(*vdb, points, triangles, quads, 0.0, 0.0, false);
   vdb.reset();
 
-  TriMesh mesh;
   const Mat3 m = grid.index_to_world_matrix();
-  mesh.positions.reserve(points.size());
-  for (const auto& p : points) mesh.positions.push_back(grid.origin + m * Vec3(p.x(), p.y(), p.z()));
+  std::vector<Vec3> positions;
+  positions.reserve(points.size());
+  for (const auto& p : points) positions.push_back(grid.origin + m * Vec3(p.x(), p.y(), p.z()));
   // OpenVDB's polygons are counter-clockwise seen from the positive (here: outside) side in index space; reverse
   // them when the index-to-world map is a reflection.
-  const bool reverse = m.determinant() < 0.0;
-  const auto add = [&](Index a, Index b, Index c) { mesh.triangles.push_back(reverse ? Tri{a, c, b} : Tri{a, b, c}); };
-  mesh.triangles.reserve(triangles.size() + 2 * quads.size());
-  for (const auto& t : triangles) add(Index(t[0]), Index(t[1]), Index(t[2]));
-  for (const auto& q : quads) {
-    const Index a = Index(q[0]), b = Index(q[1]), c = Index(q[2]), d = Index(q[3]);
-    const double ac = (mesh.positions[std::size_t(a)] - mesh.positions[std::size_t(c)]).squaredNorm();
-    const double bd = (mesh.positions[std::size_t(b)] - mesh.positions[std::size_t(d)]).squaredNorm();
-    if (ac <= bd) {
-      add(a, b, c);
-      add(a, c, d);
-    } else {
-      add(a, b, d);
-      add(b, c, d);
-    }
-  }
+  TriMesh mesh = mesh_from_vdb_polygons(std::move(positions), triangles, quads, m.determinant() < 0.0);
   if (options.keep_largest_components > 0) mesh = keep_largest_components(mesh, options.keep_largest_components);
   if (options.smoothing_iterations > 0) {
     taubin_smooth(mesh, options.smoothing_iterations, options.smoothing_lambda, options.smoothing_mu);

@@ -12,6 +12,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "volume/taubin_smooth.hpp"
+#include "volume/vdb_polygons.hpp"
 
 namespace forensim {
 
@@ -64,27 +65,11 @@ TriMesh inner_offset_surface(const TriMesh& skin, const InnerOffsetOptions& opti
   std::vector<openvdb::Vec4I> out_quads;
   openvdb::tools::volumeToMesh(*sdf, out_points, out_triangles, out_quads, -options.depth_mm, 0.0, false);
 
-  TriMesh mesh;
-  mesh.positions.reserve(out_points.size());
-  for (const auto& p : out_points) mesh.positions.emplace_back(p.x(), p.y(), p.z());
-  // OpenVDB's polygons of a level set wind clockwise seen from outside (the positive side): reversed here.
-  const auto add = [&](openvdb::Index32 a, openvdb::Index32 b, openvdb::Index32 c) {
-    mesh.triangles.push_back(Tri{static_cast<Index>(a), static_cast<Index>(c), static_cast<Index>(b)});
-  };
-  mesh.triangles.reserve(out_triangles.size() + 2 * out_quads.size());
-  for (const auto& t : out_triangles) add(t[0], t[1], t[2]);
-  for (const auto& q : out_quads) {
-    // Split along the shorter diagonal.
-    const double ac = (mesh.positions[q[0]] - mesh.positions[q[2]]).squaredNorm();
-    const double bd = (mesh.positions[q[1]] - mesh.positions[q[3]]).squaredNorm();
-    if (ac <= bd) {
-      add(q[0], q[1], q[2]);
-      add(q[0], q[2], q[3]);
-    } else {
-      add(q[0], q[1], q[3]);
-      add(q[1], q[2], q[3]);
-    }
-  }
+  std::vector<Vec3> positions;
+  positions.reserve(out_points.size());
+  for (const auto& p : out_points) positions.emplace_back(p.x(), p.y(), p.z());
+  // The polygons of a signed-distance level set wind clockwise seen from outside (its positive side): reversed.
+  TriMesh mesh = mesh_from_vdb_polygons(std::move(positions), out_triangles, out_quads, true);
   require_input(mesh.triangle_count() > 0, source, "offset surface",
                 "is empty: no part of the body is thicker than twice the offset depth of " +
                     std::to_string(options.depth_mm) + " mm");
