@@ -50,9 +50,7 @@ struct TetArgs {
 
 /// The skin of a model from real input: as given, or remeshed isotropically to about `triangles`.
 TriMesh model_skin(const TriMesh& skin, std::size_t triangles) {
-  if (triangles == 0) return skin;
-  const double edge = std::sqrt(4.0 * surface_area(skin) / (std::sqrt(3.0) * static_cast<double>(triangles)));
-  return remesh_isotropic(skin, edge, 3);
+  return triangles == 0 ? skin : remesh_to_triangle_count(skin, triangles);
 }
 
 Vec3 unit_vector(const std::vector<double>& v, const char* option) {

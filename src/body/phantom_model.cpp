@@ -44,16 +44,10 @@ double mean_edge_length(const TriMesh& mesh) {
   return mesh.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(mesh.triangle_count()));
 }
 
-/// The phantom's skin remeshed to about `triangles` uniform triangles: an equilateral triangle of edge L
-/// covers sqrt(3)/4 L^2, so L follows from the area; one correction pass (count ~ L^-2) if off by > 5 %.
+/// The phantom's skin remeshed to about the size's uniform triangles.
 TriMesh remeshed_skin(const Phantom& phantom, const PhantomModelSize& size) {
-  const TriMesh source = phantom_surface(phantom, PhantomSurface::skin, size.skin_voxel_mm);
-  const double target = static_cast<double>(size.skin_triangles);
-  double edge = std::sqrt(4.0 * surface_area(source) / (std::sqrt(3.0) * target));
-  TriMesh skin = remesh_isotropic(source, edge, 3);
-  const double got = static_cast<double>(skin.triangle_count());
-  if (std::abs(got - target) > 0.05 * target) skin = remesh_isotropic(source, edge * std::sqrt(got / target), 3);
-  return skin;
+  return remesh_to_triangle_count(phantom_surface(phantom, PhantomSurface::skin, size.skin_voxel_mm),
+                                  size.skin_triangles);
 }
 
 }  // namespace

@@ -43,4 +43,17 @@ TriMesh remesh_isotropic(const TriMesh& mesh, double target_edge_length_mm, int 
   return result;
 }
 
+TriMesh remesh_to_triangle_count(const TriMesh& mesh, std::size_t triangles, int iterations) {
+  require_input(triangles > 0, "remesh", "triangle count", "must be positive");
+  const double area = surface_area(mesh);
+  require_input(std::isfinite(area) && area > 0.0, "remesh", "mesh", "has no area");
+  const double target = static_cast<double>(triangles);
+  const double edge = std::sqrt(4.0 * area / (std::sqrt(3.0) * target));
+  TriMesh result = remesh_isotropic(mesh, edge, iterations);
+  const double got = static_cast<double>(result.triangle_count());
+  if (std::abs(got - target) > 0.05 * target)
+    result = remesh_isotropic(mesh, edge * std::sqrt(got / target), iterations);
+  return result;
+}
+
 }  // namespace forensim

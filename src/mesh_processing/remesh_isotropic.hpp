@@ -16,4 +16,10 @@ namespace forensim {
 /// or a negative iteration count.
 TriMesh remesh_isotropic(const TriMesh& mesh, double target_edge_length_mm, int iterations = 3);
 
+/// remesh_isotropic() to about `triangles` triangles: an equilateral triangle of edge L covers sqrt(3)/4 L^2, so L
+/// follows from the surface area; when the count comes out more than 5 % off, one more pass from the input with
+/// L corrected by sqrt(count / target) (the count goes as L^-2). Throws InputError for zero triangles or a mesh
+/// without area.
+TriMesh remesh_to_triangle_count(const TriMesh& mesh, std::size_t triangles, int iterations = 3);
+
 }  // namespace forensim

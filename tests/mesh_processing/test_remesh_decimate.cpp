@@ -34,6 +34,22 @@ TEST(RemeshIsotropic, SphereReachesTargetAndKeepsVolume) {
   EXPECT_GT(remeshed.triangle_count(), 3 * sphere.triangle_count());
 }
 
+TEST(RemeshIsotropic, ToATriangleCountFollowsTheTarget) {
+  // The count comes from the area (and one corrected pass): near the target, and more triangles for more asked.
+  const TriMesh sphere = make_icosphere(Vec3(1, -2, 0.5), 10.0, 4);
+  std::size_t previous = 0;
+  for (std::size_t target : {600u, 3000u, 12000u}) {
+    const TriMesh remeshed = remesh_to_triangle_count(sphere, target);
+    EXPECT_NEAR(static_cast<double>(remeshed.triangle_count()), static_cast<double>(target), 0.35 * target);
+    EXPECT_GT(remeshed.triangle_count(), 2 * previous);
+    previous = remeshed.triangle_count();
+    const TopologyReport t = check_topology(remeshed);
+    EXPECT_TRUE(t.is_closed() && t.is_manifold() && t.is_oriented());
+  }
+  EXPECT_THROW(remesh_to_triangle_count(sphere, 0), InputError);
+  EXPECT_THROW(remesh_to_triangle_count(TriMesh{}, 100), InputError);
+}
+
 TEST(RemeshIsotropic, OpenBorderStaysInPlace) {
   const TriMesh sphere = make_icosphere(Vec3::Zero(), 5.0, 3);
   std::vector<bool> keep(sphere.triangle_count(), true);
