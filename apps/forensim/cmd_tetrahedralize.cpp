@@ -15,7 +15,6 @@
 #include "image/png_io.hpp"
 #include "mesh_io/mesh_import.hpp"
 #include "mesh_processing/remesh_isotropic.hpp"
-#include "mesh_processing/repair_mesh.hpp"
 #include "phantoms/phantom.hpp"
 #include "phantoms/phantom_surface.hpp"
 #include "pictures.hpp"
@@ -151,15 +150,11 @@ int run_tetrahedralize(const TetArgs& a) {
                   bones.size());
       mesh = tetrahedralize(input, bones, options, &report);
       if (!a.model.empty() || !a.render.empty()) {
-        // With --close-openings the model's skin is closed the same way, so it covers the whole volume.
-        TriMesh closed = input;
-        if (a.close_openings) {
-          RepairOptions repair;
-          repair.max_hole_edges = 0;
-          repair.max_hole_diameter = 0.0;
-          repair_mesh(closed, repair);
-        }
-        skin = model_skin(closed, a.skin_triangles);
+        // With --close-openings the model's skin is the surface closed as the volume was, so it covers it all
+        // (otherwise the input as given, keeping its UVs).
+        std::vector<std::string> notes;
+        skin = model_skin(a.close_openings ? closed_body_surface(input, "skin surface", true, notes) : input,
+                          a.skin_triangles);
       }
       views = body_views("head", ViewAxes{pose.up, pose.front});
     } else {

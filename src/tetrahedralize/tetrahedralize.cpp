@@ -47,46 +47,6 @@ using Point = Kernel::Point_3;
 constexpr int domain_flesh = 1;
 constexpr int domain_bone = 2;
 
-/// A checked, closed copy of an input surface (repaired when needed).
-TriMesh prepare_surface(const TriMesh& input, const std::string& name, bool close_openings,
-                        std::vector<std::string>& notes) {
-  input.validate(name);
-  require_input(input.triangle_count() > 0, name, "", "the surface is empty (no triangles)");
-  TriMesh mesh;
-  mesh.positions = input.positions;
-  mesh.triangles = input.triangles;
-  const TopologyReport topology = check_topology(mesh);
-  if (!topology.is_closed() || !topology.is_manifold() || !topology.is_oriented() ||
-      topology.degenerate_triangle_count > 0) {
-    // Scan artefacts are small; an opening a quarter of the surface's size is a cut, not a hole to guess.
-    RepairOptions repair;
-    repair.max_hole_edges = 500;
-    repair.max_hole_diameter = close_openings ? 0.0 : 0.25 * bounding_box(mesh.positions).diagonal();
-    if (close_openings) repair.max_hole_edges = 0;
-    const RepairReport done = repair_mesh(mesh, repair);
-    if (!done.closed() || !done.manifold()) {
-      std::string hint;
-      if (done.holes_skipped > 0) {
-        hint = "; " + std::to_string(done.holes_skipped) +
-               " opening(s) span more than a quarter of the surface's size (a cut, such as a bust's base, not a "
-               "scan hole): cap them, or let forensim close them (close_openings, --close-openings)";
-      }
-      throw InputError(name, "",
-                       "the surface is not closed and could not be repaired (" + topology.summary() +
-                           "; after repair: " + done.after.summary() + ")" + hint);
-    }
-    notes.push_back(name + " repaired: " + topology.summary() + " -> " + done.after.summary());
-  }
-  double volume = enclosed_volume(mesh);
-  if (volume < 0.0) {
-    for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
-    volume = -volume;
-    notes.push_back(name + " was oriented inward; flipped");
-  }
-  require_input(volume > 0.0, name, "", "the surface encloses no volume");
-  return mesh;
-}
-
 Polyhedron to_polyhedron(const TriMesh& mesh) {
   std::vector<Point> points;
   points.reserve(mesh.positions.size());
@@ -239,6 +199,45 @@ std::string TetrahedralizeReport::summary() const {
   return out;
 }
 
+TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool close_openings,
+                            std::vector<std::string>& notes) {
+  input.validate(name);
+  require_input(input.triangle_count() > 0, name, "", "the surface is empty (no triangles)");
+  TriMesh mesh;
+  mesh.positions = input.positions;
+  mesh.triangles = input.triangles;
+  const TopologyReport topology = check_topology(mesh);
+  if (!topology.is_closed() || !topology.is_manifold() || !topology.is_oriented() ||
+      topology.degenerate_triangle_count > 0) {
+    // Scan artefacts are small; an opening a quarter of the surface's size is a cut, not a hole to guess.
+    RepairOptions repair;
+    repair.max_hole_edges = 500;
+    repair.max_hole_diameter = close_openings ? 0.0 : 0.25 * bounding_box(mesh.positions).diagonal();
+    if (close_openings) repair.max_hole_edges = 0;
+    const RepairReport done = repair_mesh(mesh, repair);
+    if (!done.closed() || !done.manifold()) {
+      std::string hint;
+      if (done.holes_skipped > 0) {
+        hint = "; " + std::to_string(done.holes_skipped) +
+               " opening(s) span more than a quarter of the surface's size (a cut, such as a bust's base, not a "
+               "scan hole): cap them, or let forensim close them (close_openings, --close-openings)";
+      }
+      throw InputError(name, "",
+                       "the surface is not closed and could not be repaired (" + topology.summary() +
+                           "; after repair: " + done.after.summary() + ")" + hint);
+    }
+    notes.push_back(name + " repaired: " + topology.summary() + " -> " + done.after.summary());
+  }
+  double volume = enclosed_volume(mesh);
+  if (volume < 0.0) {
+    for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
+    volume = -volume;
+    notes.push_back(name + " was oriented inward; flipped");
+  }
+  require_input(volume > 0.0, name, "", "the surface encloses no volume");
+  return mesh;
+}
+
 TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bone_inputs,
                        const TetrahedralizeOptions& options, TetrahedralizeReport* report) {
   Stopwatch watch;
@@ -259,7 +258,7 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   require_input(options.facet_angle_deg > 0.0 && options.facet_angle_deg <= 30.0, "tetrahedralize options",
                 "facet_angle_deg", "must be in (0, 30]");
 
-  const TriMesh skin = prepare_surface(skin_input, "skin surface", options.close_openings, r.notes);
+  const TriMesh skin = closed_body_surface(skin_input, "skin surface", options.close_openings, r.notes);
   r.skin_volume_mm3 = enclosed_volume(skin);
   auto skin_winding = std::make_shared<const WindingNumber>(skin);
   std::vector<TriMesh> bones;
@@ -278,7 +277,7 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   }
   for (std::size_t i = 0; i < bone_inputs.size(); ++i) {
     const std::string name = "bone surface " + std::to_string(i);
-    TriMesh bone = prepare_surface(bone_inputs[i], name, options.close_openings, r.notes);
+    TriMesh bone = closed_body_surface(bone_inputs[i], name, options.close_openings, r.notes);
     const std::vector<bool> inside = skin_winding->inside_batch(bone.positions);
     const auto outside = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), false));
     if (outside > 0) {

@@ -74,6 +74,13 @@ struct TetrahedralizeReport {
   std::string summary() const;
 };
 
+/// The closed, outward copy of a body surface that tetrahedralize() meshes (positions and triangles only): checked,
+/// repaired with repair_mesh() when open, non-manifold or degenerate (scan-sized holes filled; with
+/// `close_openings` every opening, capped and faired), and flipped when it faces inward. What was done is appended
+/// to `notes`. Throws InputError naming `name` for an empty surface or one that stays open.
+TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool close_openings,
+                            std::vector<std::string>& notes);
+
 /// Tetrahedralises the volume inside `skin` (closed, outward triangles in mm), labelling tets inside any of
 /// `bones` tissue_bone and the rest tissue_flesh. The boundary and the flesh/bone interfaces are sampled on
 /// the input surfaces (within options.surface_distance_fraction of the edge length); every tet is positively
