@@ -80,6 +80,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--unit")) job.unit = cli_job.unit;
   if (typed("--mesh-scale")) job.mesh_scale = cli_job.mesh_scale;
   if (typed("--bone-iso")) job.bone_iso = cli_job.bone_iso;
+  if (typed("--bone-edge")) job.bone_edge = cli_job.bone_edge;
   if (typed("--landmarks")) job.landmarks = cli_job.landmarks;
   if (typed("--table")) job.table = cli_job.table;
   if (typed("--sex")) job.sex = cli_job.sex;
@@ -182,6 +183,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   skull_options.mesh_units.unit = job.unit;
   skull_options.mesh_units.scale = job.mesh_scale;
   skull_options.bone_iso_value = job.bone_iso;
+  skull_options.half_maximum_height = job.bone_edge == "half-maximum";
+  if (job.bone_iso && skull_options.half_maximum_height) {
+    throw InputError("--bone-edge", "half-maximum", "measures its own threshold: give it without --bone-iso");
+  }
   const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
   if (!builtin_skull && !phantom_ct && is_volume_path(skull_path) && !std::filesystem::exists(skull_path)) {
     throw IoError(skull_path, "does not exist");
@@ -482,6 +487,12 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"triangles", skull.mesh.triangle_count()},
                          {"notes", skull.notes}};
   if (skull.iso_value) provenance["skull"]["bone_iso"] = *skull.iso_value;
+  if (skull.seed_iso_value) {
+    provenance["skull"]["bone_threshold"] = {
+        {"method", "half-maximum height (Spoor et al. 1993; Coleman and Colbert 2007)"},
+        {"seed_iso", *skull.seed_iso_value},
+        {"profiles", skull.threshold_profiles}};
+  }
   provenance["table"] = {{"name", table.name},
                          {"origin", table.origin},
                          {"source", table.comments},
@@ -631,6 +642,10 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--mesh-scale", j.mesh_scale, "Millimetres per mesh unit (overrides --unit)")
           ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--bone-iso", j.bone_iso, "CT bone iso-value in stored units (default 1150 = 126 HU)");
+      sub->add_option("--bone-edge", j.bone_edge,
+                      "CT bone surface: iso (at --bone-iso) or half-maximum (the 126 HU surface moved to the "
+                      "half-maximum height measured across it, thin bone to the plate model's edge)")
+          ->check(CLI::IsMember({"iso", "half-maximum"}));
       sub->add_option("--landmarks", j.landmarks,
                       "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto' (detected; "
                       "the default for other skulls)");

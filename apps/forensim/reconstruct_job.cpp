@@ -39,6 +39,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   if (root.has("bone_iso")) {
     j.bone_iso = root.get_number("bone_iso", 0.0, -1e6, 1e6);
   }
+  j.bone_edge = root.get_choice("bone_edge", defaults.bone_edge, {"iso", "half-maximum"});
   j.landmarks = path_value(root, "landmarks", defaults.landmarks, base, {"template", "auto"});
   j.table = path_value(root, "table", defaults.table, base, {"ttable_2023", "rhine_1983"});
   j.sex = root.get_choice("sex", defaults.sex, {"", "female", "male", "pooled"});
@@ -93,6 +94,7 @@ nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json 
   resolved["unit"] = job.unit;
   resolved["mesh_scale"] = job.mesh_scale;
   if (job.bone_iso) resolved["bone_iso"] = *job.bone_iso;
+  resolved["bone_edge"] = job.bone_edge;
   resolved["landmarks"] = job.landmarks;
   resolved["table"] = job.table;
   resolved["sex"] = job.sex;

@@ -8,6 +8,9 @@
 ///   ct               a CT volume, or "phantom" (the built-in CT of the head phantom); replaces `skull`
 ///   unit, mesh_scale units of a mesh skull (auto, m, cm, mm, in; millimetres per unit)
 ///   bone_iso         CT bone iso-value (stored values; default 1150, i.e. 126 HU stored as HU + 1024)
+///   bone_edge        "iso" (default: the bone surface at bone_iso) or "half-maximum" (the 126 HU surface moved to
+///                    the half-maximum height threshold measured across it, thin bone to the plate model's edge;
+///                    volume/half_maximum_height)
 ///   landmarks        skull landmarks: a .mrk.json or .csv file, "template" (the template's skull landmarks,
 ///                    for the built-in skull and the CT phantom) or "auto" (detected: the template's skull
 ///                    registered onto the skull, each landmark refined by its definition, with a confidence)
@@ -56,6 +59,7 @@ struct ReconstructJob {
   std::string unit = "auto";
   double mesh_scale = 0.0;
   std::optional<double> bone_iso;
+  std::string bone_edge = "iso";
   std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else "auto"
   std::string table = "ttable_2023";
   std::string sex, population, build;

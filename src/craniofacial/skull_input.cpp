@@ -13,6 +13,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "mesh_processing/decimate.hpp"
+#include "volume/half_maximum_height.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
 
@@ -21,6 +22,8 @@ namespace {
 
 constexpr double k_default_bone_iso_hu = 126.0;  // 1150 in HU + 1024 storage (VTK medical examples)
 constexpr double k_hu_storage_offset = 1024.0;
+/// Fewer plateau profiles than this and the half-maximum height is not trusted (noise specks, a bone fragment).
+constexpr std::size_t k_min_threshold_profiles = 200;
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -109,36 +112,63 @@ Skull skull_from_mesh(TriMesh mesh, const std::string& source, const SkullInputO
   return skull;
 }
 
-Skull skull_from_volume(const ScalarGrid& volume, const std::string& source, const SkullInputOptions& options) {
+BoneSurface extract_bone_surface(const ScalarGrid& volume, const std::string& source,
+                                 const SkullInputOptions& options) {
   volume.validate(source);
-  double iso = 0.0;
-  std::string iso_note;
+  BoneSurface bone;
+  const bool measure = !options.bone_iso_value && options.half_maximum_height;
   if (options.bone_iso_value) {
-    iso = *options.bone_iso_value;
-    if (!std::isfinite(iso)) throw InputError(source, "bone iso-value", "is not finite");
+    bone.iso_value = *options.bone_iso_value;
+    if (!std::isfinite(bone.iso_value)) throw InputError(source, "bone iso-value", "is not finite");
   } else {
     const auto [lo, hi] = volume.value_range();
     (void)hi;
     const bool offset_storage = lo >= -100.0f;
-    iso = k_default_bone_iso_hu + (offset_storage ? k_hu_storage_offset : 0.0);
-    iso_note = fmt::format("bone iso-value {} ({} HU{})", iso, k_default_bone_iso_hu,
-                           offset_storage ? ", volume stored as HU + 1024" : "");
+    bone.iso_value = k_default_bone_iso_hu + (offset_storage ? k_hu_storage_offset : 0.0);
+    bone.notes.push_back(fmt::format("bone {} iso-value {} ({} HU{})", measure ? "found at" : "surface at",
+                                     bone.iso_value, k_default_bone_iso_hu,
+                                     offset_storage ? ", volume stored as HU + 1024" : ""));
   }
   IsoSurfaceOptions iso_options;
   iso_options.smoothing_iterations = options.smoothing_iterations;
-  TriMesh surface = extract_iso_surface(volume, iso, iso_options);
-  if (surface.triangles.empty()) {
-    throw InputError(source, fmt::format("iso-value {}", iso), "no voxel lies above the bone iso-value");
+  bone.surface = extract_iso_surface(volume, bone.iso_value, iso_options);
+  if (bone.surface.triangles.empty()) {
+    throw InputError(source, fmt::format("iso-value {}", bone.iso_value), "no voxel lies above the bone iso-value");
   }
-  Skull skull = skull_from_mesh(std::move(surface), source, options);
+  if (!measure) return bone;
+  HalfMaximumOptions hmh_options;
+  hmh_options.iso_value = bone.iso_value;
+  const HalfMaximumHeight hmh = half_maximum_height(bone.surface, volume, hmh_options);
+  if (hmh.used < k_min_threshold_profiles || !std::isfinite(hmh.level)) {
+    bone.notes.push_back(
+        fmt::format("half-maximum height not used ({} plateau profiles of {}, level {:.0f}): "
+                    "surface at {}",
+                    hmh.used, hmh.profiles, hmh.level, bone.iso_value));
+    return bone;
+  }
+  const HalfMaximumMoves moves = move_to_half_maximum(bone.surface, volume, hmh.level, hmh.peak, hmh_options);
+  bone.notes.push_back(fmt::format(
+      "bone surface moved to its half-maximum height {:.0f} (SD {:.0f}; mean over {} plateau profiles across the {} "
+      "surface, bone {:.0f}, beside it {:.0f}): {} vertices to it, {} of thinner bone to the plate model's edge, "
+      "mean move {:+.2f} mm, {} cut to a voxel",
+      hmh.level, hmh.level_sd, hmh.used, bone.iso_value, hmh.peak, hmh.background, moves.to_level, moves.to_own,
+      moves.mean_shift_mm, moves.capped));
+  bone.seed_iso_value = bone.iso_value;
+  bone.threshold_profiles = hmh.used;
+  bone.iso_value = hmh.level;
+  return bone;
+}
+
+Skull skull_from_volume(const ScalarGrid& volume, const std::string& source, const SkullInputOptions& options) {
+  BoneSurface bone = extract_bone_surface(volume, source, options);
+  Skull skull = skull_from_mesh(std::move(bone.surface), source, options);
   skull.kind = "ct";
-  skull.iso_value = iso;
+  skull.iso_value = bone.iso_value;
+  skull.seed_iso_value = bone.seed_iso_value;
+  skull.threshold_profiles = bone.threshold_profiles;
   skull.field_of_view = ScanFieldOfView::of_volume(volume);
-  if (!iso_note.empty()) {
-    std::vector<std::string> notes = {iso_note};
-    for (std::string& n : skull.notes) notes.push_back(std::move(n));
-    skull.notes = std::move(notes);
-  }
+  for (std::string& n : skull.notes) bone.notes.push_back(std::move(n));
+  skull.notes = std::move(bone.notes);
   return skull;
 }
 

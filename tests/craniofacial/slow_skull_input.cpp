@@ -41,6 +41,28 @@ TEST(SlowSkullInput, SkullMeshScanInMillimetres) {
       fit.iterations, fit_s);
 }
 
+// The headsq CT's bone at its default, the half-maximum height measured across the 1150 surface: above 1150 (3.2 mm
+// voxels blur the bone's edge outward), below the bone's own value, and a surface inside the 1150 one.
+TEST(SlowSkullInput, HeadsqCtBoneAtItsHalfMaximumHeight) {
+  FORENSIM_REQUIRE_DATA(path, "ct-head-headsq/quarter.nhdr");
+  SkullInputOptions options;
+  options.half_maximum_height = true;
+  const Skull measured = load_skull(path, options);
+  SkullInputOptions fixed_options;
+  fixed_options.bone_iso_value = 1150.0;
+  const Skull fixed = load_skull(path, fixed_options);
+  ASSERT_TRUE(measured.iso_value && measured.seed_iso_value);
+  std::printf("headsq bone threshold %.1f from %zu plateau profiles; enclosed volume %.0f cm^3 (1150: %.0f cm^3)\n",
+              *measured.iso_value, measured.threshold_profiles, enclosed_volume(measured.mesh) / 1e3,
+              enclosed_volume(fixed.mesh) / 1e3);
+  EXPECT_EQ(*measured.seed_iso_value, 1150.0);
+  EXPECT_GT(*measured.iso_value, 1300.0);
+  EXPECT_LT(*measured.iso_value, 1600.0);
+  EXPECT_GT(measured.threshold_profiles, 1000u);
+  EXPECT_LT(enclosed_volume(measured.mesh), enclosed_volume(fixed.mesh));
+  EXPECT_TRUE(check_topology(measured.mesh).is_closed());
+}
+
 // The VTK headsq CT (64 x 64 x 93, 3.2 x 3.2 x 1.5 mm, HU + 1024): the bone surface at SOURCE.md's 1150.
 TEST(SlowSkullInput, HeadsqCtBoneSurface) {
   FORENSIM_REQUIRE_DATA(path, "ct-head-headsq/quarter.nhdr");
