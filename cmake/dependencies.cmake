@@ -22,7 +22,6 @@ find_package(PkgConfig REQUIRED)
 # OpenVDB ships a Find module (not a config) in its own cmake folder.
 list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
 find_package(OpenVDB REQUIRED)                              # OpenVDB::openvdb
-find_package(Boost 1.74 REQUIRED CONFIG COMPONENTS headers)  # Boost::headers (Boost.Math special functions)
 
 # stb: Debian builds the implementations into libstb; headers live in /usr/include/stb.
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)         # PkgConfig::STB
