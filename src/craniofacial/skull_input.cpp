@@ -138,15 +138,16 @@ BoneSurface extract_bone_surface(const ScalarGrid& volume, const std::string& so
   if (!measure) return bone;
   HalfMaximumOptions hmh_options;
   hmh_options.iso_value = bone.iso_value;
-  const HalfMaximumHeight hmh = half_maximum_height(bone.surface, volume, hmh_options);
-  if (hmh.used < k_min_threshold_profiles || !std::isfinite(hmh.level)) {
+  const std::vector<EdgeProfile> profiles = measure_edge_profiles(bone.surface, volume, hmh_options);
+  const HalfMaximumHeight hmh = half_maximum_height(profiles);
+  if (hmh.used < k_min_threshold_profiles) {
     bone.notes.push_back(
         fmt::format("half-maximum height not used ({} plateau profiles of {}, level {:.0f}): "
                     "surface at {}",
                     hmh.used, hmh.profiles, hmh.level, bone.iso_value));
     return bone;
   }
-  const HalfMaximumMoves moves = move_to_half_maximum(bone.surface, volume, hmh.level, hmh.peak, hmh_options);
+  const HalfMaximumMoves moves = move_to_half_maximum(bone.surface, profiles, hmh.level, hmh.peak);
   bone.notes.push_back(fmt::format(
       "bone surface moved to its half-maximum height {:.0f} (SD {:.0f}; mean over {} plateau profiles across the {} "
       "surface, bone {:.0f}, beside it {:.0f}): {} vertices to it, {} of thinner bone to the plate model's edge, "

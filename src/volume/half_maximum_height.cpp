@@ -52,7 +52,7 @@ double inverse_erf(double y) {
 double EdgeProfile::crossing_of(double level) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (!found || !std::isfinite(level)) return nan;
-  const auto at = [&](int k) { return samples[std::size_t(k)]; };
+  const auto at = [&](int k) { return double(samples[std::size_t(k)]); };
   const int last = int(samples.size()) - 1;
   // The sample just inside the iso crossing.
   const int j = std::clamp(origin + int(std::floor(crossing_mm / step_mm)), 0, last - 1);
@@ -72,6 +72,7 @@ double EdgeProfile::crossing_of(double level) const {
 EdgeProfile measure_edge_profile(const ScalarGrid& volume, const Vec3& point, const Vec3& outward,
                                  const HalfMaximumOptions& options) {
   EdgeProfile p;
+  p.outward = outward;
   p.extent_mm = voxel_extent(volume, outward);
   const double h = options.step_voxels * p.extent_mm;
   const double search = options.crossing_search_voxels * p.extent_mm;
@@ -83,8 +84,10 @@ EdgeProfile measure_edge_profile(const ScalarGrid& volume, const Vec3& point, co
   const double outside = -std::numeric_limits<double>::infinity();
   const int last = n_in + n_out;
   p.samples.resize(std::size_t(last + 1));
-  for (int k = 0; k <= last; ++k) p.samples[std::size_t(k)] = volume.sample(point + (k - n_in) * h * outward, outside);
-  const auto at = [&](int k) { return p.samples[std::size_t(k)]; };
+  for (int k = 0; k <= last; ++k) {
+    p.samples[std::size_t(k)] = float(volume.sample(point + (k - n_in) * h * outward, outside));
+  }
+  const auto at = [&](int k) { return double(p.samples[std::size_t(k)]); };
   const double iso = options.iso_value;
   // The falling iso crossing (inside at j, outside at j + 1) nearest to the point.
   int j = -1;
@@ -133,35 +136,32 @@ EdgeProfile measure_edge_profile(const ScalarGrid& volume, const Vec3& point, co
   return p;
 }
 
-HalfMaximumHeight half_maximum_height(const TriMesh& surface, const ScalarGrid& volume,
-                                      const HalfMaximumOptions& options) {
+std::vector<EdgeProfile> measure_edge_profiles(const TriMesh& surface, const ScalarGrid& volume,
+                                               const HalfMaximumOptions& options) {
   check(options);
   const std::size_t n = surface.positions.size();
-  std::vector<Vec3> normal = surface.normals;
-  if (normal.size() != n) normal = vertex_normals(surface);
-  std::vector<double> level(n, std::numeric_limits<double>::quiet_NaN()), peak(n, 0.0), background(n, 0.0);
-  std::vector<char> found(n, 0);
+  const std::vector<Vec3> normals = surface.normals.size() == n ? surface.normals : vertex_normals(surface);
+  std::vector<EdgeProfile> profiles(n);
   parallel_for(0, n, [&](std::size_t v) {
-    const Vec3 d = normal[v].normalized();
-    if (!d.allFinite()) return;
-    const EdgeProfile p = measure_edge_profile(volume, surface.positions[v], d, options);
-    if (!p.found) return;
-    found[v] = 1;
-    if (options.plateau_only && !p.is_plateau()) return;
-    level[v] = p.half_maximum();
-    peak[v] = p.peak;
-    background[v] = p.background;
+    const Vec3 d = normals[v].normalized();
+    if (d.allFinite()) profiles[v] = measure_edge_profile(volume, surface.positions[v], d, options);
   });
+  return profiles;
+}
+
+HalfMaximumHeight half_maximum_height(const std::vector<EdgeProfile>& profiles, bool plateau_only) {
   HalfMaximumHeight out;
   double sum = 0.0, sum_sq = 0.0, sum_peak = 0.0, sum_bg = 0.0;
-  for (std::size_t v = 0; v < n; ++v) {
-    out.profiles += std::size_t(found[v]);
-    if (std::isnan(level[v])) continue;
+  for (const EdgeProfile& p : profiles) {
+    if (!p.found) continue;
+    ++out.profiles;
+    if (plateau_only && !p.is_plateau()) continue;
     ++out.used;
-    sum += level[v];
-    sum_sq += level[v] * level[v];
-    sum_peak += peak[v];
-    sum_bg += background[v];
+    const double level = p.half_maximum();
+    sum += level;
+    sum_sq += level * level;
+    sum_peak += p.peak;
+    sum_bg += p.background;
   }
   if (out.used == 0) return out;
   const double count = double(out.used);
@@ -178,33 +178,26 @@ double thin_plate_level(double peak, double background, double plateau) {
   return background + 0.5 * (plateau - background) * std::erf(2.0 * u);
 }
 
-HalfMaximumMoves move_to_half_maximum(TriMesh& surface, const ScalarGrid& volume, double level, double plateau,
-                                      const HalfMaximumOptions& options, int smoothing_iterations) {
-  check(options);
+HalfMaximumMoves move_to_half_maximum(TriMesh& surface, const std::vector<EdgeProfile>& profiles, double level,
+                                      double plateau, int smoothing_iterations) {
   require_input(std::isfinite(level), "half-maximum height", "level", "is not finite");
   require_input(smoothing_iterations >= 0, "half-maximum height", "smoothing_iterations", "must not be negative");
-  HalfMaximumMoves out;
   const std::size_t n = surface.positions.size();
+  require_input(profiles.size() == n, "half-maximum height", "profiles", "must be one per surface vertex");
+  HalfMaximumMoves out;
   out.vertices = n;
   if (n == 0) return out;
-  std::vector<Vec3> normal = surface.normals.size() == n ? surface.normals : vertex_normals(surface);
   std::vector<double> shift(n, 0.0);
   std::vector<char> kind(n, 0), capped(n, 0);
   parallel_for(0, n, [&](std::size_t v) {
-    normal[v] = normal[v].normalized();
-    if (!normal[v].allFinite()) {
-      normal[v] = Vec3::Zero();
-      return;
-    }
-    const EdgeProfile p = measure_edge_profile(volume, surface.positions[v], normal[v], options);
+    const EdgeProfile& p = profiles[v];
     if (!p.found) return;
     const bool reaches = p.peak > level;
     const double t = p.crossing_of(reaches ? level : thin_plate_level(p.peak, p.background, plateau));
     if (!std::isfinite(t)) return;
     kind[v] = reaches ? 1 : 2;
-    const double cap = p.extent_mm;
-    capped[v] = std::abs(t) > cap;
-    shift[v] = std::clamp(t, -cap, cap);
+    capped[v] = std::abs(t) > p.extent_mm;
+    shift[v] = std::clamp(t, -p.extent_mm, p.extent_mm);
   });
   // Jacobi passes of umbrella averaging: order-independent.
   const std::vector<std::array<Index, 2>> edges = unique_edges(surface.triangles);
@@ -220,7 +213,7 @@ HalfMaximumMoves move_to_half_maximum(TriMesh& surface, const ScalarGrid& volume
   }
   double sum_shift = 0.0, sum_abs = 0.0;
   for (std::size_t v = 0; v < n; ++v) {
-    surface.positions[v] += shift[v] * normal[v];
+    surface.positions[v] += shift[v] * profiles[v].outward;
     sum_shift += shift[v];
     sum_abs += std::abs(shift[v]);
     out.to_level += std::size_t(kind[v] == 1);

@@ -33,9 +33,6 @@ struct HalfMaximumOptions {
   double min_contrast = 1.0;
   /// Profile sampling step, in voxel extents along the normal.
   double step_voxels = 0.1;
-  /// Use only profiles whose peak is a plateau (EdgeProfile::is_plateau): thinner structures never reach their own
-  /// value, and their half-way value is not the edge's.
-  bool plateau_only = true;
 };
 
 /// The profile of a volume along a surface point's outward normal around its iso crossing.
@@ -48,7 +45,8 @@ struct EdgeProfile {
   double extent_mm = 0.0;       ///< one voxel's length along the normal
   double step_mm = 0.0;         ///< sample spacing
   double crossing_mm = 0.0;     ///< where the profile falls through the iso-value (mm along the normal)
-  std::vector<double> samples;  ///< values at t = (k - origin) * step_mm along the normal
+  Vec3 outward = Vec3::Zero();  ///< the unit direction sampled
+  std::vector<float> samples;   ///< values at t = (k - origin) * step_mm along `outward` (-inf outside the volume)
   int origin = 0;               ///< index of the sample at the point
   /// The peak is a plateau: flat (within 10 % of the contrast) over at least a voxel and at least the edge's own
   /// 90-10 % fall. A structure thinner than the blur is never flat for as long as its edges take to fall.
@@ -64,21 +62,27 @@ struct EdgeProfile {
 EdgeProfile measure_edge_profile(const ScalarGrid& volume, const Vec3& point, const Vec3& outward,
                                  const HalfMaximumOptions& options);
 
+/// The profiles of `volume` along the vertex normals of `surface` (an outward-oriented iso-surface of `volume` at
+/// options.iso_value, world mm, with or without normals), one per vertex (not found where a normal is degenerate).
+/// Measured once, they give both the threshold (half_maximum_height) and the moves (move_to_half_maximum).
+/// Deterministic at any thread count. Throws InputError for a non-finite iso-value or options out of range.
+std::vector<EdgeProfile> measure_edge_profiles(const TriMesh& surface, const ScalarGrid& volume,
+                                               const HalfMaximumOptions& options);
+
 /// The threshold measured on a surface.
 struct HalfMaximumHeight {
   std::size_t profiles = 0;  ///< surface vertices whose profile was found
-  std::size_t used = 0;      ///< of those, the ones averaged (plateau profiles with plateau_only)
-  double level = 0.0;        ///< mean half-maximum over the used profiles (stored units; 0 when none)
-  double level_sd = 0.0;     ///< their standard deviation
-  double peak = 0.0;         ///< mean peak and background of the used profiles
+  std::size_t used = 0;      ///< of those, the ones averaged (with plateau_only, the plateaus: EdgeProfile::is_plateau;
+                         ///< thinner structures never reach their own value, nor is their half-way value the edge's)
+  double level = 0.0;     ///< mean half-maximum over the used profiles (stored units; 0 when none)
+  double level_sd = 0.0;  ///< their standard deviation
+  double peak = 0.0;      ///< mean peak and background of the used profiles
   double background = 0.0;
 };
 
-/// The HMH threshold of the structure bounded by `surface` (an outward-oriented iso-surface of `volume` at
-/// options.iso_value, world mm, with or without normals): profiles along the vertex normals, averaged. Deterministic
-/// at any thread count. Throws InputError for a non-finite iso-value or options out of range.
-HalfMaximumHeight half_maximum_height(const TriMesh& surface, const ScalarGrid& volume,
-                                      const HalfMaximumOptions& options);
+/// The HMH threshold of the structure whose surface `profiles` cross (measure_edge_profiles): the half-maximum of
+/// the found profiles averaged, only the plateau ones with `plateau_only`.
+HalfMaximumHeight half_maximum_height(const std::vector<EdgeProfile>& profiles, bool plateau_only = true);
 
 /// What move_to_half_maximum did: moves are signed along the outward normal (negative: inward).
 struct HalfMaximumMoves {
@@ -90,16 +94,16 @@ struct HalfMaximumMoves {
   double mean_abs_shift_mm = 0.0;
 };
 
-/// Moves every vertex of `surface` (an outward-oriented iso-surface of `volume` at options.iso_value, world mm) along
-/// its normal to the structure's edge: where its profile peaks above `level` (the half-maximum height threshold), to
+/// Moves every vertex of `surface` along the direction of its profile (`profiles`: measure_edge_profiles of this
+/// surface) to the structure's edge: where its profile peaks above `level` (the half-maximum height threshold), to
 /// where it falls through `level`; where the structure is too thin to reach it, to where it falls through the
 /// thin_plate_level of its peak with `plateau` as the structure's own value (0: its own half-maximum). This keeps
 /// thin structures an iso-surface at `level` would lose. Moves are cut to one voxel extent (the iso-surface already
 /// lies within a voxel of the edge) and averaged over edge neighbours `smoothing_iterations` times (noise in one
 /// profile should not crease the surface); normals are recomputed. Deterministic at any thread count. Throws
-/// InputError for options out of range or a non-finite level.
-HalfMaximumMoves move_to_half_maximum(TriMesh& surface, const ScalarGrid& volume, double level, double plateau,
-                                      const HalfMaximumOptions& options, int smoothing_iterations = 4);
+/// InputError for a non-finite level, negative iterations or a profile count other than the vertex count.
+HalfMaximumMoves move_to_half_maximum(TriMesh& surface, const std::vector<EdgeProfile>& profiles, double level,
+                                      double plateau, int smoothing_iterations = 4);
 
 /// The level at the surfaces of a plate of value `plateau` (c) and any thickness d over `background` (b), blurred by a
 /// Gaussian of any width s, given its blurred peak P = b + (c - b) erf(u), u = d / (2 sqrt 2 s): b + (c - b) erf(2u) /

@@ -67,7 +67,7 @@ TEST(HalfMaximumHeight, ThresholdOfABlurredBallIsHalfWayAndPutsTheSurfaceOnTheEd
   const TriMesh seed = extract_iso_surface(ct, options.iso_value);
   // 1150 lies where erfc(x) / 2 = 150 / 800: x = 0.63, i.e. 1.3 mm outside the edge.
   EXPECT_GT(mean_radius(seed) - radius, 1.0);
-  const HalfMaximumHeight hmh = half_maximum_height(seed, ct, options);
+  const HalfMaximumHeight hmh = half_maximum_height(measure_edge_profiles(seed, ct, options));
   EXPECT_EQ(hmh.profiles, seed.positions.size());
   EXPECT_GT(hmh.used, seed.positions.size() / 2);
   EXPECT_NEAR(hmh.peak, k_bone, 5.0);
@@ -85,11 +85,10 @@ TEST(HalfMaximumHeight, StructuresThinnerThanTheBlurAreNotPlateaus) {
   options.iso_value = 1150.0;
   const TriMesh seed = extract_iso_surface(ct, options.iso_value);
   ASSERT_FALSE(seed.triangles.empty());
-  const HalfMaximumHeight plateaus = half_maximum_height(seed, ct, options);
+  const HalfMaximumHeight plateaus = half_maximum_height(measure_edge_profiles(seed, ct, options));
   EXPECT_GT(plateaus.profiles, 0u);
   EXPECT_EQ(plateaus.used, 0u);
-  options.plateau_only = false;
-  const HalfMaximumHeight all = half_maximum_height(seed, ct, options);
+  const HalfMaximumHeight all = half_maximum_height(measure_edge_profiles(seed, ct, options), false);
   EXPECT_EQ(all.used, all.profiles);
   EXPECT_LT(all.peak, k_soft + 0.5 * (k_bone - k_soft));  // erf(1 / (2 sqrt 2 * 1.5)) of the contrast
 }
@@ -144,7 +143,8 @@ TEST(HalfMaximumHeight, MovesPutThickAndThinStructuresOnTheirEdges) {
   // Thick: the ball's surface moves to the threshold, on the edge.
   const ScalarGrid ball = blurred_ball(40.0);
   TriMesh surface = extract_iso_surface(ball, options.iso_value);
-  const HalfMaximumMoves thick = move_to_half_maximum(surface, ball, level, k_bone, options);
+  const HalfMaximumMoves thick =
+      move_to_half_maximum(surface, measure_edge_profiles(surface, ball, options), level, k_bone);
   EXPECT_EQ(thick.to_level, surface.positions.size());
   EXPECT_LT(thick.mean_shift_mm, -1.0);
   EXPECT_NEAR(mean_radius(surface), 40.0, 0.15);
@@ -155,13 +155,14 @@ TEST(HalfMaximumHeight, MovesPutThickAndThinStructuresOnTheirEdges) {
   EXPECT_TRUE(extract_iso_surface(shell, level).triangles.empty());
   const TriMesh seed = extract_iso_surface(shell, options.iso_value);
   TriMesh plate = seed, own = seed;
-  const HalfMaximumMoves thin = move_to_half_maximum(plate, shell, level, k_bone, options);
-  move_to_half_maximum(own, shell, level, 0.0, options);
+  const std::vector<EdgeProfile> profiles = measure_edge_profiles(seed, shell, options);
+  const HalfMaximumMoves thin = move_to_half_maximum(plate, profiles, level, k_bone);
+  move_to_half_maximum(own, profiles, level, 0.0);
   EXPECT_GT(thin.to_own, seed.positions.size() / 2);
   EXPECT_NEAR(mean_outer_radius(plate), 40.0, 0.25);
   EXPECT_GT(mean_outer_radius(own) - 40.0, 0.5);
   EXPECT_EQ(plate.triangles, seed.triangles);  // moved, not re-meshed
-  EXPECT_THROW(move_to_half_maximum(plate, shell, std::nan(""), k_bone, options), InputError);
+  EXPECT_THROW(move_to_half_maximum(plate, profiles, std::nan(""), k_bone), InputError);
 }
 
 TEST(HalfMaximumHeight, SameThresholdAtAnyThreadCount) {
@@ -170,9 +171,9 @@ TEST(HalfMaximumHeight, SameThresholdAtAnyThreadCount) {
   options.iso_value = 1150.0;
   const TriMesh seed = extract_iso_surface(ct, options.iso_value);
   set_thread_count(1);
-  const HalfMaximumHeight one = half_maximum_height(seed, ct, options);
+  const HalfMaximumHeight one = half_maximum_height(measure_edge_profiles(seed, ct, options));
   set_thread_count(0);
-  const HalfMaximumHeight all = half_maximum_height(seed, ct, options);
+  const HalfMaximumHeight all = half_maximum_height(measure_edge_profiles(seed, ct, options));
   EXPECT_EQ(one.used, all.used);
   EXPECT_EQ(one.level, all.level);
   EXPECT_EQ(one.level_sd, all.level_sd);
@@ -183,16 +184,16 @@ TEST(HalfMaximumHeight, BadOptionsAreInputErrors) {
   const TriMesh seed = extract_iso_surface(ct, 1150.0);
   HalfMaximumOptions options;
   options.iso_value = std::nan("");
-  EXPECT_THROW(half_maximum_height(seed, ct, options), InputError);
+  EXPECT_THROW(measure_edge_profiles(seed, ct, options), InputError);
   options.iso_value = 1150.0;
   options.step_voxels = 0.0;
-  EXPECT_THROW(half_maximum_height(seed, ct, options), InputError);
+  EXPECT_THROW(measure_edge_profiles(seed, ct, options), InputError);
   options.step_voxels = 0.1;
   options.background_voxels = -1.0;
-  EXPECT_THROW(half_maximum_height(seed, ct, options), InputError);
+  EXPECT_THROW(measure_edge_profiles(seed, ct, options), InputError);
   // An empty surface measures nothing.
   options.background_voxels = 1.5;
-  const HalfMaximumHeight none = half_maximum_height(TriMesh{}, ct, options);
+  const HalfMaximumHeight none = half_maximum_height(measure_edge_profiles(TriMesh{}, ct, options));
   EXPECT_EQ(none.used, 0u);
   EXPECT_EQ(none.level, 0.0);
 }
