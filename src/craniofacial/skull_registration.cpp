@@ -9,7 +9,9 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "geometry/mesh_measures.hpp"
 #include "spatial/closest_point.hpp"
+#include "spatial/nearest_point.hpp"
 
 namespace forensim {
 
@@ -28,14 +30,19 @@ void check_mesh(const TriMesh& mesh, const std::string& name) {
   mesh.validate(name);
 }
 
-/// Every k-th vertex, at most `max_samples`.
-std::vector<Vec3> sample_vertices(const TriMesh& mesh, std::size_t max_samples) {
-  const std::size_t n = mesh.positions.size();
+/// Every k-th entry of `values` (one per mesh vertex), at most `max_samples`.
+std::vector<Vec3> every_kth(const std::vector<Vec3>& values, std::size_t max_samples) {
+  const std::size_t n = values.size();
   const std::size_t stride = std::max<std::size_t>(1, (n + max_samples - 1) / std::max<std::size_t>(1, max_samples));
   std::vector<Vec3> samples;
   samples.reserve(n / stride + 1);
-  for (std::size_t i = 0; i < n; i += stride) samples.push_back(mesh.positions[i]);
+  for (std::size_t i = 0; i < n; i += stride) samples.push_back(values[i]);
   return samples;
+}
+
+/// Every k-th vertex, at most `max_samples`.
+std::vector<Vec3> sample_vertices(const TriMesh& mesh, std::size_t max_samples) {
+  return every_kth(mesh.positions, max_samples);
 }
 
 struct Moments {
@@ -702,6 +709,11 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
   require_input(nr.trim_fraction >= 0.0 && nr.trim_fraction < 0.9, where, "trim_fraction", "must lie in [0, 0.9)");
   require_input(nr.tangential_weight >= 0.0 && nr.tangential_weight <= 1.0, where, "tangential_weight",
                 "must lie in [0, 1]");
+  require_input(nr.reverse_weight >= 0.0, where, "reverse_weight", "must not be negative");
+  require_input(nr.reverse_trim_fraction >= 0.0 && nr.reverse_trim_fraction < 0.9, where, "reverse_trim_fraction",
+                "must lie in [0, 0.9)");
+  require_input(nr.reverse_normal_cos >= -1.0 && nr.reverse_normal_cos <= 1.0, where, "reverse_normal_cos",
+                "must lie in [-1, 1]");
   check_mesh(target, "target skull");
   const TargetSurface surface(target, options.similarity.target_view);
   std::vector<Vec3> samples;
@@ -766,24 +778,78 @@ SkullRegistration register_skull(const TriMesh& reference, const TriMesh& target
             gaussian((reg.node_positions[i] - reg.node_positions[j]).squaredNorm(), sigma);
       }
     }
+    // Reverse pairs: target samples to their nearest moving reference sample (the target's own shape pulls the
+    // reference where the reference's closest points slide past it, a longer chin or jaw for one), point to the
+    // target's tangent plane there; the worst reverse_trim_fraction dropped (parts the reference lacks).
+    const std::vector<Vec3> targets = nr.reverse_weight > 0.0
+                                          ? target_samples(target, surface, options.similarity.max_samples / 2)
+                                          : std::vector<Vec3>{};
+    const std::size_t t_count = targets.size();
+    std::vector<Vec3> target_normal(t_count);
+    {
+      const auto hits = surface.query.query_batch(targets);
+      for (std::size_t t = 0; t < t_count; ++t) {
+        target_normal[t] = surface.face_normals[static_cast<std::size_t>(hits[t]->triangle)];
+      }
+    }
+    // The reference samples' normals (the samples are every k-th vertex, as sample_vertices takes them), turned by
+    // the similarity: a reverse pair joins surfaces that face the same way (not a vertebra to the jaw's underside).
+    std::vector<Vec3> sample_normal;
+    if (t_count > 0) {
+      sample_normal = every_kth(vertex_normals(reference), options.similarity.max_samples);
+      for (Vec3& n : sample_normal) n = sim.similarity.rotation * n;
+      if (sample_normal.size() != s_count) throw NumericError("non-rigid registration: sample normals do not match");
+    }
+    const double reverse_scale = std::sqrt(nr.reverse_weight);
+    const auto rows = static_cast<Eigen::Index>(s_count + t_count);
     Eigen::MatrixXd w = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_nodes), 3);
     std::vector<Vec3> x = y;
     Correspondences c = similarity_pairs;
     double rms = reg.similarity_rms_mm;
+    // The desired displacement of a moving sample from its pair: the normal part of the offset in full, the
+    // tangential part weighted (lets it slide).
+    const auto wanted = [&](std::size_t i, const Vec3& offset, const Vec3& n) -> Vec3 {
+      const Vec3 normal_part = n * n.dot(offset);
+      return (x[i] - y[i]) + normal_part + nr.tangential_weight * (offset - normal_part);
+    };
     for (double stiffness : nr.stiffness_schedule) {
       for (int it = 0; it < nr.iterations_per_stage; ++it) {
         c = correspond(surface, x, nr.trim_fraction, &c);
         rms = c.trimmed_rms;
-        Eigen::MatrixXd am = a;
-        Eigen::MatrixXd d(static_cast<Eigen::Index>(s_count), 3);
+        Eigen::MatrixXd am(rows, static_cast<Eigen::Index>(n_nodes));
+        Eigen::MatrixXd d(rows, 3);
         for (std::size_t i = 0; i < s_count; ++i) {
           const auto row = static_cast<Eigen::Index>(i);
-          const Vec3 offset = c.fixed[i] - x[i];
-          const Vec3& n = c.normal[i];
-          const Vec3 normal_part = n * n.dot(offset);
-          const Vec3 target_u = (x[i] - y[i]) + normal_part + nr.tangential_weight * (offset - normal_part);
-          d.row(row) = target_u.transpose();
-          if (!c.kept[i]) am.row(row).setZero();
+          if (c.kept[i]) {
+            am.row(row) = a.row(row);
+            d.row(row) = wanted(i, c.fixed[i] - x[i], c.normal[i]).transpose();
+          } else {
+            am.row(row).setZero();
+            d.row(row).setZero();
+          }
+        }
+        if (t_count > 0) {
+          const NearestPointIndex moving(x);
+          const std::vector<NearestPoint> near = moving.nearest_batch(targets);
+          Correspondences r;
+          r.distance.resize(t_count);
+          r.valid.assign(t_count, 1);
+          for (std::size_t t = 0; t < t_count; ++t) {
+            r.distance[t] = near[t].distance;
+            r.valid[t] = static_cast<char>(sample_normal[near[t].index].dot(target_normal[t]) > nr.reverse_normal_cos);
+          }
+          trim(r, nr.reverse_trim_fraction);
+          for (std::size_t t = 0; t < t_count; ++t) {
+            const auto row = static_cast<Eigen::Index>(s_count + t);
+            const std::size_t i = near[t].index;
+            if (r.kept[t]) {
+              am.row(row) = reverse_scale * a.row(static_cast<Eigen::Index>(i));
+              d.row(row) = reverse_scale * wanted(i, targets[t] - x[i], target_normal[t]).transpose();
+            } else {
+              am.row(row).setZero();
+              d.row(row).setZero();
+            }
+          }
         }
         // A^T A in column blocks side by side (a fixed split, whatever the thread count): the one dense product
         // of the stage, which would otherwise hold one core while the other waits.

@@ -23,7 +23,12 @@
 ///    min sum_i |P_i (y_i + u(y_i) - q_i)|^2 + lambda w^T K w, K_jk = exp(-|c_j - c_k|^2 / (2 sigma^2)),
 ///    with the stiffness lambda lowered stage by stage (the motion-coherence prior of coherent point drift,
 ///    Myronenko and Song 2010, with closest-point correspondences); reference samples outside the target's field
-///    of view have no pair and follow the smooth field.
+///    of view have no pair and follow the smooth field. The pairs again run both ways: beside each reference
+///    sample's closest target point, each target sample pulls its nearest moving reference sample towards its
+///    tangent plane (surfaces facing the same way only, the worst share trimmed: vertebrae, the hyoid). One way
+///    only, a part the target has longer (a lower chin) is never reached: the reference's closest points slide
+///    along the part's side instead, and where they stop depends on the reference's sampling (the coarse and
+///    the full template's menton landed 8 mm apart on headsq; with the reverse pairs about 1 mm).
 /// The final run stops at the noise floor of its trimmed pairs (SimilarityRegistrationOptions::stall_iterations)
 /// and keeps its lowest-RMS iterate. Every iteration's closest-point searches are bounded by the distance to the
 /// previous iteration's closest points (ClosestPointQuery::query_batch_bounded: same answers, found sooner).
@@ -106,6 +111,12 @@ struct NonRigidRegistrationOptions {
   int iterations_per_stage = 8;
   double trim_fraction = 0.1;      ///< share of worst pairs dropped each iteration
   double tangential_weight = 0.2;  ///< weight of the tangential part of each closest-point offset (lets it slide)
+  /// Weight of the reverse pairs (target samples to their nearest moving reference sample) beside the forward ones
+  /// (0: forward pairs only, which cannot pull the reference out along a part the target has longer).
+  double reverse_weight = 1.0;
+  double reverse_trim_fraction = 0.3;  ///< share of worst reverse pairs dropped (parts the reference lacks)
+  /// A reverse pair needs the two surfaces' normals within acos(reverse_normal_cos) of each other.
+  double reverse_normal_cos = 0.5;
 };
 
 struct SkullRegistrationOptions {

@@ -6,8 +6,10 @@
 // partial one (the similarity's scale stays within 10 % of 1).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "core/timer.hpp"
 #include "craniofacial/landmark_detection.hpp"
@@ -150,5 +152,27 @@ TEST(SlowLandmarkDetection, FullTemplateRegistersOnTheHeadsqCtInTheCoarseTemplat
   EXPECT_LT(full.registration.similarity_rms_mm, 3.4);
   EXPECT_LT(coarse.registration.similarity_rms_mm, 3.4);
   // Menton, the lowest point of the symphysis, lands on the same bone with either template.
-  EXPECT_LT((coarse.landmarks.at("me").position_mm - full.landmarks.at("me").position_mm).norm(), 5.0);
+  EXPECT_LT((coarse.landmarks.at("me").position_mm - full.landmarks.at("me").position_mm).norm(), 3.0);
+  // The two templates are one skull sampled twice: where the registration carries their landmarks must not
+  // depend on the sampling. One-way pairs left the CT's longer chin part reached, differently for each (here
+  // the chin's landmarks 2.25 mm apart and the median 2.11 mm; on the half-maximum bone surface menton 4.9 mm);
+  // with the reverse pairs 0.87 and 1.70 mm.
+  std::vector<double> apart;
+  double chin_apart = 0.0;
+  for (const DetectedLandmark& d : coarse.details) {
+    for (const DetectedLandmark& e : full.details) {
+      if (d.name != e.name || !d.in_view || !e.in_view) continue;
+      apart.push_back((d.transferred_mm - e.transferred_mm).norm());
+      if (d.name == "pg" || d.name == "gn" || d.name == "me") chin_apart = std::max(chin_apart, apart.back());
+    }
+  }
+  ASSERT_GT(apart.size(), 20u);
+  std::nth_element(apart.begin(), apart.begin() + static_cast<std::ptrdiff_t>(apart.size() / 2), apart.end());
+  const double median = apart[apart.size() / 2];
+  std::printf(
+      "headsq: transferred landmarks of the two templates %.2f mm apart (median over %zu), the chin's "
+      "(pg, gn, me) up to %.2f mm\n",
+      median, apart.size(), chin_apart);
+  EXPECT_LT(median, 2.0);
+  EXPECT_LT(chin_apart, 1.5);
 }

@@ -117,6 +117,12 @@ TEST(SkullRegistration, BadInputIsRejected) {
   bad = {};
   bad.non_rigid.node_count = 2;
   EXPECT_THROW(register_skull(reference, reference, bad), InputError);
+  bad = {};
+  bad.non_rigid.reverse_weight = -1.0;
+  EXPECT_THROW(register_skull(reference, reference, bad), InputError);
+  bad = {};
+  bad.non_rigid.reverse_trim_fraction = 0.9;
+  EXPECT_THROW(register_skull(reference, reference, bad), InputError);
 }
 
 TEST(SkullRegistration, BasinsAreTheFirstOfEachGroupOfNearbyRotations) {
