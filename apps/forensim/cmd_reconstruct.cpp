@@ -57,6 +57,16 @@ struct ReconstructArgs {
   std::string expressions;  ///< --expressions: comma-separated presets, or "none"
 };
 
+/// The head frame automatic landmarks were refined in: origin and axes in the skull's coordinates (mm).
+nlohmann::json head_frame_json(const HeadFrame& frame) {
+  const auto vec = [](const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  return {{"origin_mm", vec(frame.origin)},
+          {"x_left", vec(frame.axes.col(0))},
+          {"y_posterior", vec(frame.axes.col(1))},
+          {"z_superior", vec(frame.axes.col(2))},
+          {"perpendicularity_deg", frame.perpendicularity_deg}};
+}
+
 std::string table_name(const std::string& name) {
   if (name == "rhine_1983") return "rhine_1983_sw_native_american_female_normal";
   return name;
@@ -183,7 +193,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   skull_options.mesh_units.unit = job.unit;
   skull_options.mesh_units.scale = job.mesh_scale;
   skull_options.bone_iso_value = job.bone_iso;
-  skull_options.half_maximum_height = job.bone_edge == "half-maximum";
+  skull_options.half_maximum_height = bone_edge_of(job) == "half-maximum";
   if (job.bone_iso && skull_options.half_maximum_height) {
     throw InputError("--bone-edge", "half-maximum", "measures its own threshold: give it without --bone-iso");
   }
@@ -514,6 +524,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                          {"sharpness", d.sharpness},
                          {"symmetry_error_mm", d.symmetry_error_mm},
                          {"refinement_mm", (d.refined_mm - d.transferred_mm).norm()},
+                         {"transferred_mm", {d.transferred_mm.x(), d.transferred_mm.y(), d.transferred_mm.z()}},
                          {"in_view", d.in_view}});
     }
     const SkullRegistration& reg = detection->registration;
@@ -521,6 +532,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
                                             {"similarity_scale", reg.similarity.scale},
                                             {"similarity_rms_mm", reg.similarity_rms_mm},
                                             {"non_rigid_rms_mm", reg.rms_mm},
+                                            {"head_frame", head_frame_json(detection->frame)},
                                             {"landmarks", details}};
     nlohmann::json left_out = nlohmann::json::array();
     for (const auto& [name, reason] : detection->left_out) left_out.push_back({{"name", name}, {"reason", reason}});
@@ -643,8 +655,9 @@ const RegisterCommand reconstruct_command{
           ->check(CLI::Range(0.0, 1e6));
       sub->add_option("--bone-iso", j.bone_iso, "CT bone iso-value in stored units (default 1150 = 126 HU)");
       sub->add_option("--bone-edge", j.bone_edge,
-                      "CT bone surface: iso (at --bone-iso) or half-maximum (the 126 HU surface moved to the "
-                      "half-maximum height measured across it, thin bone to the plate model's edge)")
+                      "CT bone surface: half-maximum (default without --bone-iso: the 126 HU surface moved to "
+                      "the half-maximum height measured across it, thin bone to the plate model's edge) or iso (at "
+                      "--bone-iso; the default when it is given)")
           ->check(CLI::IsMember({"iso", "half-maximum"}));
       sub->add_option("--landmarks", j.landmarks,
                       "Skull landmarks: .mrk.json or .csv file, 'template' (built-in skull's own) or 'auto' (detected; "

@@ -39,7 +39,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   if (root.has("bone_iso")) {
     j.bone_iso = root.get_number("bone_iso", 0.0, -1e6, 1e6);
   }
-  j.bone_edge = root.get_choice("bone_edge", defaults.bone_edge, {"iso", "half-maximum"});
+  j.bone_edge = root.get_choice("bone_edge", defaults.bone_edge, {"", "iso", "half-maximum"});
   j.landmarks = path_value(root, "landmarks", defaults.landmarks, base, {"template", "auto"});
   j.table = path_value(root, "table", defaults.table, base, {"ttable_2023", "rhine_1983"});
   j.sex = root.get_choice("sex", defaults.sex, {"", "female", "male", "pooled"});
@@ -87,6 +87,11 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   return j;
 }
 
+std::string bone_edge_of(const ReconstructJob& job) {
+  if (!job.bone_edge.empty()) return job.bone_edge;
+  return job.bone_iso ? "iso" : "half-maximum";
+}
+
 nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved) {
   resolved["version"] = 1;
   resolved["skull"] = job.skull;
@@ -94,7 +99,7 @@ nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json 
   resolved["unit"] = job.unit;
   resolved["mesh_scale"] = job.mesh_scale;
   if (job.bone_iso) resolved["bone_iso"] = *job.bone_iso;
-  resolved["bone_edge"] = job.bone_edge;
+  resolved["bone_edge"] = bone_edge_of(job);
   resolved["landmarks"] = job.landmarks;
   resolved["table"] = job.table;
   resolved["sex"] = job.sex;

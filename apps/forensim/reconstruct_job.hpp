@@ -8,9 +8,9 @@
 ///   ct               a CT volume, or "phantom" (the built-in CT of the head phantom); replaces `skull`
 ///   unit, mesh_scale units of a mesh skull (auto, m, cm, mm, in; millimetres per unit)
 ///   bone_iso         CT bone iso-value (stored values; default 1150, i.e. 126 HU stored as HU + 1024)
-///   bone_edge        "iso" (default: the bone surface at bone_iso) or "half-maximum" (the 126 HU surface moved to
-///                    the half-maximum height threshold measured across it, thin bone to the plate model's edge;
-///                    volume/half_maximum_height)
+///   bone_edge        "half-maximum" (default without bone_iso: the 126 HU surface moved to the half-maximum
+///                    height threshold measured across it, thin bone to the plate model's edge;
+///                    volume/half_maximum_height) or "iso" (default with bone_iso: the bone surface at bone_iso)
 ///   landmarks        skull landmarks: a .mrk.json or .csv file, "template" (the template's skull landmarks,
 ///                    for the built-in skull and the CT phantom) or "auto" (detected: the template's skull
 ///                    registered onto the skull, each landmark refined by its definition, with a confidence)
@@ -59,7 +59,7 @@ struct ReconstructJob {
   std::string unit = "auto";
   double mesh_scale = 0.0;
   std::optional<double> bone_iso;
-  std::string bone_edge = "iso";
+  std::string bone_edge;  ///< empty: "iso" when bone_iso is given, else "half-maximum" (bone_edge_of)
   std::string landmarks;  ///< empty: "template" for the built-in skull and CT phantom, else "auto"
   std::string table = "ttable_2023";
   std::string sex, population, build;
@@ -84,6 +84,10 @@ struct ReconstructJob {
 /// `base` is the folder relative paths are resolved against (empty: as given). Throws JobError.
 ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& defaults,
                                     const std::filesystem::path& base);
+
+/// The CT bone edge the job asks for: its bone_edge, or when that is empty "iso" with a bone_iso and
+/// "half-maximum" without.
+std::string bone_edge_of(const ReconstructJob& job);
 
 /// The job as it runs, for run.json: `resolved` (the job file's values as read, defaults included) with every
 /// key replaced by `job`'s final value, so options and flags typed on the command line (--evaluate,

@@ -200,3 +200,22 @@ TEST(ReconstructCli, RunRecordHoldsTheFlagsAndReadsBackToTheSameJob) {
   EXPECT_EQ(back.expressions, std::vector<std::string>{"smile"});
   EXPECT_EQ(back.uncertainty_samples, 8);
 }
+
+TEST(ReconstructCli, BoneEdgeIsTheHalfMaximumUnlessABoneIsoIsGiven) {
+  const auto job_of = [](const std::string& text) {
+    JobDocument file = JobDocument::parse(text, "job.json");
+    const cli::ReconstructJob job = cli::read_reconstruct_job(file.root(), cli::ReconstructJob{}, "");
+    file.check_all_used();
+    return job;
+  };
+  EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1})")), "half-maximum");
+  EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1, "bone_iso": 1300})")), "iso");
+  EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1, "bone_edge": "iso"})")), "iso");
+  EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1, "bone_edge": "half-maximum"})")), "half-maximum");
+  EXPECT_THROW(job_of(R"({"version": 1, "bone_edge": "steepest"})"), JobError);
+  // The record names the edge that ran, so it reads back to the same run even if the default changes.
+  const cli::ReconstructJob with_iso = job_of(R"({"version": 1, "bone_iso": 1300})");
+  const nlohmann::json record = cli::reconstruct_job_record(with_iso, nlohmann::json::object());
+  EXPECT_EQ(record["bone_edge"], "iso");
+  EXPECT_EQ(cli::bone_edge_of(job_of(record.dump())), "iso");
+}
