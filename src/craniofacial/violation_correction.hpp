@@ -34,8 +34,9 @@ struct ViolationCorrectionOptions {
   std::size_t max_pairs = 64;  ///< pairs added per round
   double spacing_mm = 6.0;     ///< least distance between the new pairs' sources (template mm)...
   /// ...halved for another try (not counted as a round) while a round finds no free place, down to this: the
-  /// last violations sit close to existing pairs.
-  double min_spacing_mm = 1.0;
+  /// last violations sit close to existing pairs (on headsq with the full template the last two lay within 0.5 mm
+  /// of pairs already placed, and 1 mm left them).
+  double min_spacing_mm = 0.25;
   std::size_t neighbours = 3;  ///< given landmarks whose smallest depth is the pair's depth
 };
 
