@@ -29,6 +29,7 @@
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "phantoms/ct_head_phantom.hpp"
+#include "reconstruct_job.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
 
@@ -74,10 +75,9 @@ std::string count_text(const char* what, std::size_t n) {
 void bench_ct(const std::string& label, const ScalarGrid& volume, const TemplateHead& head, const TissueDepths& depths,
               const BenchOptions& options, std::vector<BenchRow>& rows) {
   double c_edge = 0.0, c_mesh = 0.0, c_detect = 0.0, c_fit = 0.0, c_violations = 0.0;
-  // As forensim reconstruct: the bone surface at its half-maximum height (found from the 126 HU surface); the
-  // 126 HU iso-surface alone (--bone-iso 1150) timed beside it.
-  SkullInputOptions edge_options;
-  edge_options.half_maximum_height = true;
+  // As forensim reconstruct on its defaults: the bone surface at its half-maximum height (found from the 126 HU
+  // surface); the 126 HU iso-surface alone (--bone-iso 1150) timed beside it.
+  const SkullInputOptions edge_options = skull_input_options(ReconstructJob{});
   BoneSurface bone;
   const BenchTiming t_edge = timed(
       options.repetitions, [&] { bone = extract_bone_surface(volume, label, edge_options); }, c_edge);
@@ -178,9 +178,7 @@ BenchRow bench_ct_end_to_end(const std::string& label, const ScalarGrid& volume,
         Skull skull;
         std::optional<LandmarkDetection> detection;
         const TemplateHead head = make_template_head_beside(template_options, [&](const TemplateHead& skull_part) {
-          SkullInputOptions edge;
-          edge.half_maximum_height = true;  // as forensim reconstruct's default
-          skull = skull_from_volume(volume, label, edge);
+          skull = skull_from_volume(volume, label, skull_input_options(ReconstructJob{}));
           ScanLandmarkDetection found = detect_scan_landmarks(skull_part, skull.mesh, skull.field_of_view);
           detection = std::move(found.detection);
           if (found.completion) skull.mesh = std::move(found.completion->mesh);

@@ -189,14 +189,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   TemplateHead head;
   Skull skull;
   std::optional<ScalarGrid> volume;
-  SkullInputOptions skull_options;
-  skull_options.mesh_units.unit = job.unit;
-  skull_options.mesh_units.scale = job.mesh_scale;
-  skull_options.bone_iso_value = job.bone_iso;
-  skull_options.half_maximum_height = bone_edge_of(job) == "half-maximum";
-  if (job.bone_iso && skull_options.half_maximum_height) {
-    throw InputError("--bone-edge", "half-maximum", "measures its own threshold: give it without --bone-iso");
-  }
+  const SkullInputOptions skull_options = skull_input_options(job);
   const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
   if (!builtin_skull && !phantom_ct && is_volume_path(skull_path) && !std::filesystem::exists(skull_path)) {
     throw IoError(skull_path, "does not exist");

@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/error.hpp"
 #include "craniofacial/face_expression.hpp"
 
 namespace forensim::cli {
@@ -90,6 +91,18 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
 std::string bone_edge_of(const ReconstructJob& job) {
   if (!job.bone_edge.empty()) return job.bone_edge;
   return job.bone_iso ? "iso" : "half-maximum";
+}
+
+SkullInputOptions skull_input_options(const ReconstructJob& job) {
+  SkullInputOptions options;
+  options.mesh_units.unit = job.unit;
+  options.mesh_units.scale = job.mesh_scale;
+  options.bone_iso_value = job.bone_iso;
+  options.half_maximum_height = bone_edge_of(job) == "half-maximum";
+  if (job.bone_iso && options.half_maximum_height) {
+    throw InputError("--bone-edge", "half-maximum", "measures its own threshold: give it without --bone-iso");
+  }
+  return options;
 }
 
 nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved) {

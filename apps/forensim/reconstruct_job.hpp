@@ -50,6 +50,7 @@
 
 #include "core/job.hpp"
 #include "craniofacial/face_guides_job.hpp"
+#include "craniofacial/skull_input.hpp"
 
 namespace forensim::cli {
 
@@ -88,6 +89,11 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
 /// The CT bone edge the job asks for: its bone_edge, or when that is empty "iso" with a bone_iso and
 /// "half-maximum" without.
 std::string bone_edge_of(const ReconstructJob& job);
+
+/// How the job reads its skull: mesh units, bone iso-value and bone edge (bone_edge_of). The one place the
+/// command's defaults become SkullInputOptions (forensim bench reconstruct times the same). Throws InputError
+/// naming --bone-edge for half-maximum with a bone_iso (the edge measures its own threshold).
+SkullInputOptions skull_input_options(const ReconstructJob& job);
 
 /// The job as it runs, for run.json: `resolved` (the job file's values as read, defaults included) with every
 /// key replaced by `job`'s final value, so options and flags typed on the command line (--evaluate,

@@ -48,6 +48,13 @@ struct NearestPointIndex::Impl {
   std::vector<Point3> points;
   IndexToPoint map;
   std::unique_ptr<Tree> tree;
+
+  /// The nearest point of a finite query in a non-empty cloud.
+  NearestPoint nearest(const Vec3& query) const {
+    const Search search(*tree, Point3(query.x(), query.y(), query.z()), 1, 0.0, true, Distance(map));
+    const auto best = search.begin();
+    return {best->first, std::sqrt(best->second)};
+  }
 };
 
 NearestPointIndex::NearestPointIndex(const std::vector<Vec3>& points) : impl_(std::make_unique<Impl>()) {
@@ -76,9 +83,7 @@ std::size_t NearestPointIndex::size() const {
 NearestPoint NearestPointIndex::nearest(const Vec3& query) const {
   check_finite(query, "nearest point query", 0);
   require_input(!impl_->points.empty(), "nearest point query", "", "the point cloud is empty");
-  const Search search(*impl_->tree, Point3(query.x(), query.y(), query.z()), 1, 0.0, true, Distance(impl_->map));
-  const auto best = search.begin();
-  return {best->first, std::sqrt(best->second)};
+  return impl_->nearest(query);
 }
 
 std::vector<NearestPoint> NearestPointIndex::nearest_batch(const std::vector<Vec3>& queries) const {
@@ -86,7 +91,7 @@ std::vector<NearestPoint> NearestPointIndex::nearest_batch(const std::vector<Vec
   require_input(queries.empty() || !impl_->points.empty(), "nearest point query", "", "the point cloud is empty");
   std::vector<NearestPoint> out(queries.size());
   parallel_for(
-      0, queries.size(), [&](std::size_t i) { out[i] = nearest(queries[i]); }, 64);
+      0, queries.size(), [&](std::size_t i) { out[i] = impl_->nearest(queries[i]); }, 64);
   return out;
 }
 

@@ -213,6 +213,13 @@ TEST(ReconstructCli, BoneEdgeIsTheHalfMaximumUnlessABoneIsoIsGiven) {
   EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1, "bone_edge": "iso"})")), "iso");
   EXPECT_EQ(cli::bone_edge_of(job_of(R"({"version": 1, "bone_edge": "half-maximum"})")), "half-maximum");
   EXPECT_THROW(job_of(R"({"version": 1, "bone_edge": "steepest"})"), JobError);
+  // The skull is read as the edge says; both ways of fixing the surface at once are refused.
+  EXPECT_TRUE(cli::skull_input_options(job_of(R"({"version": 1})")).half_maximum_height);
+  const SkullInputOptions at_iso = cli::skull_input_options(job_of(R"({"version": 1, "bone_iso": 1300})"));
+  EXPECT_FALSE(at_iso.half_maximum_height);
+  EXPECT_EQ(at_iso.bone_iso_value, 1300.0);
+  EXPECT_THROW(cli::skull_input_options(job_of(R"({"version": 1, "bone_iso": 1300, "bone_edge": "half-maximum"})")),
+               InputError);
   // The record names the edge that ran, so it reads back to the same run even if the default changes.
   const cli::ReconstructJob with_iso = job_of(R"({"version": 1, "bone_iso": 1300})");
   const nlohmann::json record = cli::reconstruct_job_record(with_iso, nlohmann::json::object());
