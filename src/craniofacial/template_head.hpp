@@ -69,6 +69,11 @@ struct TemplateHead {
   std::vector<TemplateLandmarkPair> landmarks;
   std::vector<TemplateSkinLandmark> skin_landmarks;
   std::vector<MuscleLayout> muscles;  ///< the 24 muscles, grids on the skin
+  /// What the template was made from ("built-in template head", or the head mesh / CT of forensim template build).
+  std::string source = "built-in template head (head phantom)";
+  /// The skin's own base-colour map (PNG bytes, on the skin's UVs), or empty: procedural skin maps are made on the
+  /// atlas. A template built from a textured head mesh carries that texture baked onto its atlas.
+  std::string texture_png;
   /// Seconds to build, and its stages: the skin surface, then its atlas and muscles (make_template_skin), beside the
   /// skull with its landmarks (make_template_skull), then the skin points of the landmarks (join_template_head).
   double seconds = 0.0;
