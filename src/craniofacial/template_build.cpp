@@ -1,0 +1,343 @@
+#include "craniofacial/template_build.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "craniofacial/landmark_vocabulary.hpp"
+#include "craniofacial/rbf_warp.hpp"
+#include "craniofacial/skull_normals.hpp"
+#include "geometry/mesh_measures.hpp"
+#include "image/png_io.hpp"
+#include "mesh_processing/uv_atlas.hpp"
+#include "spatial/closest_point.hpp"
+#include "spatial/ray_caster.hpp"
+#include "texture/uv_bake.hpp"
+
+namespace forensim {
+
+namespace {
+
+/// The rotation and translation taking `from` onto `to` in the least-squares sense, no scale (Kabsch 1976):
+/// the subject keeps its size and is only placed in the template's frame.
+struct Rigid {
+  Mat3 rotation = Mat3::Identity();
+  Vec3 translation = Vec3::Zero();
+  Vec3 apply(const Vec3& p) const { return rotation * p + translation; }
+};
+
+Rigid kabsch(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+  Vec3 cf = Vec3::Zero(), ct = Vec3::Zero();
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    cf += from[i];
+    ct += to[i];
+  }
+  cf /= static_cast<double>(from.size());
+  ct /= static_cast<double>(to.size());
+  Mat3 h = Mat3::Zero();
+  for (std::size_t i = 0; i < from.size(); ++i) h += (from[i] - cf) * (to[i] - ct).transpose();
+  const Eigen::JacobiSVD<Mat3> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 d = Mat3::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) d(2, 2) = -1.0;
+  Rigid r;
+  r.rotation = svd.matrixV() * d * svd.matrixU().transpose();
+  r.translation = ct - r.rotation * cf;
+  return r;
+}
+
+TriMesh moved(TriMesh mesh, const Rigid& r) {
+  for (Vec3& p : mesh.positions) p = r.apply(p);
+  for (Vec3& n : mesh.normals) n = r.rotation * n;
+  return mesh;
+}
+
+/// The skin point a pair measures on a skin: where skull + t * normal first meets it (t in [0, max_t]) on a
+/// triangle that is not a cap.
+std::optional<RayHit> skin_hit(const RayCaster& rays, const std::vector<char>& caps, const Vec3& skull,
+                               const Vec3& normal, double max_t) {
+  double t_min = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    auto hit = rays.intersect(skull, normal, t_min, max_t);
+    if (!hit) return std::nullopt;
+    if (caps.empty() || !caps[static_cast<std::size_t>(hit->triangle)]) return hit;
+    t_min = hit->t + 1e-6;
+  }
+  return std::nullopt;
+}
+
+/// The direction a depth is measured along: the skull's patch normal, or `reference` (the template's direction)
+/// where the patch turns more than 45 degrees from it.
+Vec3 measuring_direction(const Vec3& patch, const Vec3& reference) {
+  return patch.dot(reference) >= std::cos(M_PI / 4.0) ? patch : reference.normalized();
+}
+
+}  // namespace
+
+TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildInput& input,
+                                  const TemplateBuildOptions& options) {
+  const std::string source = input.source.empty() ? std::string("template build input") : input.source;
+  require_input(!base.skin.triangles.empty() && !base.landmarks.empty(), "template build", "base template",
+                "has no skin or no landmarks");
+  require_input(!input.skin.triangles.empty(), source, "skin", "has no triangles");
+  input.skin.validate(source + " skin");
+  if (input.skull) {
+    require_input(!input.skull->triangles.empty(), source, "skull", "has no triangles");
+    input.skull->validate(source + " skull");
+  }
+  require_input(options.max_depth_mm > 0.0 && options.max_depth_mm <= 200.0, "template build", "max_depth_mm",
+                "must lie in (0, 200] mm");
+  require_input(options.conform_reach_mm > 0.0 && options.conform_reach_mm <= 100.0, "template build",
+                "conform_reach_mm", "must lie in (0, 100] mm");
+  require_input(options.patch_radius_mm >= 0.0 && options.patch_radius_mm <= 50.0, "template build", "patch_radius_mm",
+                "must lie in [0, 50] mm");
+  require_input(options.texture_size >= 16 && options.texture_size <= 8192, "template build", "texture_size",
+                "must lie in [16, 8192]");
+  require_input(input.texture.empty() || input.skin.has_uvs(), source, "texture",
+                "is given but the skin mesh has no texture coordinates");
+
+  TemplateBuild out;
+  TemplateBuildReport& report = out.report;
+  const LandmarkVocabulary& vocabulary = LandmarkVocabulary::built_in();
+  const std::vector<char> caps = input.skin_view.cap_triangles(input.skin);
+
+  // 1. Correspondences in the subject's frame: template point -> subject point, skull landmarks and skin points.
+  std::optional<SkullSurface> subject_skull;
+  if (input.skull) subject_skull.emplace(*input.skull);
+  const RayCaster subject_skin_rays(input.skin);
+  const SkullSurface base_skull(base.skull);
+  const RayCaster base_skin_rays(base.skin);
+  struct Measured {
+    bool on_skull = false;
+    Vec3 skull = Vec3::Zero(), normal = Vec3::Zero();
+  };
+  std::vector<Measured> measured(base.landmarks.size());
+  std::vector<Vec3> from, to;
+  // The skull landmarks first: they turn the template's directions into the subject's frame (a rigid fit).
+  std::vector<std::string> bone_of(base.landmarks.size());
+  std::vector<Vec3> bone_from, bone_to;
+  for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
+    const TemplateLandmarkPair& pair = base.landmarks[i];
+    const LandmarkRef skin_ref = vocabulary.resolve(pair.skin_name, "template head", pair.skin_name);
+    const auto bone_ref = vocabulary.paired(skin_ref);
+    bone_of[i] = bone_ref ? vocabulary.name(*bone_ref) : pair.bone_name;
+    if (!subject_skull) continue;
+    const Landmark* on_bone = input.skull_landmarks.find(bone_of[i]);
+    if (on_bone == nullptr) continue;
+    const ClosestPoint at = subject_skull->closest_point(on_bone->position_mm);
+    measured[i].on_skull = true;
+    measured[i].skull = at.point;
+    measured[i].normal = subject_skull->patch_normal(at, options.patch_radius_mm);
+    bone_from.push_back(pair.skull);
+    bone_to.push_back(at.point);
+  }
+  const Mat3 to_subject = bone_from.size() >= 3 ? kabsch(bone_from, bone_to).rotation : Mat3::Identity();
+  for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
+    const TemplateLandmarkPair& pair = base.landmarks[i];
+    if (const Landmark* given = input.skin_landmarks.find(pair.skin_name)) {
+      from.push_back(pair.skin);
+      to.push_back(given->position_mm);
+      report.pairs_from_skin.push_back(pair.skin_name);
+      continue;
+    }
+    if (!measured[i].on_skull) continue;
+    Measured& m = measured[i];
+    // Both skin points measured the same way: along the skull's patch normal, or the template's direction where the
+    // patch turns more than 45 degrees from it (teeth and thin nasal bones tilt a patch), so the two correspond.
+    const Vec3 base_patch = base_skull.patch_normal(base_skull.closest_point(pair.skull), options.patch_radius_mm);
+    const Vec3 base_normal = measuring_direction(base_patch, pair.skull_normal);
+    m.normal = measuring_direction(m.normal, to_subject * base_normal);
+    const auto hit = skin_hit(subject_skin_rays, caps, m.skull, m.normal, options.max_depth_mm);
+    if (!hit) {
+      report.pairs_left.emplace_back(pair.skin_name, fmt::format("the skull normal at {} meets no skin within {} mm",
+                                                                 bone_of[i], options.max_depth_mm));
+      continue;
+    }
+    const auto base_hit = skin_hit(base_skin_rays, {}, pair.skull, base_normal, options.max_depth_mm);
+    if (!base_hit) {
+      report.pairs_left.emplace_back(pair.skin_name, "the template's own skull normal there meets no skin");
+      continue;
+    }
+    from.push_back(base_hit->point);
+    to.push_back(hit->point);
+    report.pairs_from_skull.push_back(pair.skin_name);
+  }
+  for (const Landmark& l : input.skin_landmarks.landmarks()) {
+    for (const TemplateSkinLandmark& s : base.skin_landmarks) {
+      if (s.name != l.name) continue;
+      from.push_back(s.position);
+      to.push_back(l.position_mm);
+      report.pairs_from_skin.push_back(s.name);
+    }
+  }
+  require_input(from.size() >= 4, source, "landmarks",
+                fmt::format("only {} skin points of the subject pair with the template's (at least 4 needed: skull "
+                            "landmarks on a skull whose normals meet the skin, or skin landmarks named as the "
+                            "template's, e.g. se', prn', pg')",
+                            from.size()));
+  report.warp_landmarks = from.size();
+
+  // The subject placed in the template's frame (rigid: it keeps its size).
+  const Rigid place = kabsch(to, from);
+  for (Vec3& p : to) p = place.apply(p);
+  for (Measured& m : measured) {
+    m.skull = place.apply(m.skull);
+    m.normal = place.rotation * m.normal;
+  }
+  const TriMesh skin = moved(input.skin, place);
+  const std::optional<TriMesh> skull = input.skull ? std::optional(moved(*input.skull, place)) : std::nullopt;
+
+  // 2. The warp of the template onto the subject (eq. 1).
+  const RbfWarp warp(from, to, source + " landmarks");
+  TemplateHead& head = out.head;
+  head = base;
+  head.source = source;
+  head.texture_png.clear();
+  const std::vector<Vec3> warped = warp.evaluate_batch(base.skin.positions);
+  TriMesh warped_skin = base.skin;
+  warped_skin.positions = warped;
+  warped_skin.normals = vertex_normals(warped_skin);
+
+  // 3. The warped skin onto the subject's, along each vertex normal.
+  const std::size_t nv = warped.size();
+  std::vector<Vec3> conformed = warped;
+  std::vector<char> moved_flag(nv, 0);
+  parallel_for(
+      0, nv,
+      [&](std::size_t v) {
+        const Vec3& p = warped[v];
+        const Vec3& n = warped_skin.normals[v];
+        if (!(n.squaredNorm() > 0.5)) return;
+        std::optional<RayHit> best;
+        double best_t = options.conform_reach_mm;
+        for (const double sign : {1.0, -1.0}) {
+          if (best && best_t <= 0.0) break;
+          double t_min = 0.0;
+          for (int k = 0; k < 6; ++k) {
+            const auto hit = subject_skin_rays.intersect(p, sign * n, t_min, best_t);
+            if (!hit) break;
+            const bool cap = !caps.empty() && caps[static_cast<std::size_t>(hit->triangle)];
+            if (!cap && hit->normal.dot(n) > 0.3) {
+              best = hit;
+              best_t = std::max(hit->t, 0.0);
+              break;
+            }
+            t_min = hit->t + 1e-6;
+          }
+        }
+        if (best) {
+          conformed[v] = best->point;
+          moved_flag[v] = 1;
+        }
+      },
+      256);
+  // Triangles the move turned over (a fold on a lip, the nose's tip, an ear's rim): their corners go to their
+  // closest points on the subject's skin instead; those still turned over keep the warp.
+  const ClosestPointQuery subject_skin_points(input.skin);
+  const std::vector<Vec3> warped_face_normal = face_normals(warped_skin);
+  for (int round = 0; round < 5; ++round) {
+    TriMesh probe = warped_skin;
+    probe.positions = conformed;
+    const std::vector<Vec3> fn = face_normals(probe);
+    std::size_t flipped = 0;
+    for (std::size_t f = 0; f < fn.size(); ++f) {
+      if (fn[f].dot(warped_face_normal[f]) >= 0.0) continue;
+      ++flipped;
+      if (round == 4) continue;
+      for (const Index vi : probe.triangles[f]) {
+        const auto v = static_cast<std::size_t>(vi);
+        const auto cp = round == 0 ? subject_skin_points.query(warped[v]) : std::nullopt;
+        const bool cap = cp && !caps.empty() && caps[static_cast<std::size_t>(cp->triangle)];
+        if (cp && !cap && cp->distance <= options.conform_reach_mm) {
+          conformed[v] = cp->point;
+          moved_flag[v] = 1;
+        } else {
+          conformed[v] = warped[v];
+          moved_flag[v] = 0;
+        }
+      }
+    }
+    report.flipped_triangles = flipped;
+    if (flipped == 0) break;
+  }
+  double moved_sum = 0.0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!moved_flag[v]) continue;
+    ++report.vertices_conformed;
+    moved_sum += (conformed[v] - warped[v]).norm();
+  }
+  report.vertices_warped = nv - report.vertices_conformed;
+  report.mean_conform_mm = report.vertices_conformed ? moved_sum / static_cast<double>(report.vertices_conformed) : 0;
+  head.skin.positions = conformed;
+  head.skin.normals = vertex_normals(head.skin);
+  if (head.skin.has_uvs()) head.uv_l2_stretch = uv_l2_stretch(head.skin);
+
+  // The skull: the subject's, or the template's carried by the warp.
+  if (skull) {
+    head.skull = *skull;
+  } else {
+    head.skull.positions = warp.evaluate_batch(base.skull.positions);
+  }
+  head.skull.normals = vertex_normals(head.skull);
+
+  // 4. The pairs on the new skin and skull.
+  const RayCaster new_skin_rays(head.skin);
+  const ClosestPointQuery new_skin_points(head.skin);
+  const SkullSurface new_skull(head.skull);
+  for (std::size_t i = 0; i < head.landmarks.size(); ++i) {
+    TemplateLandmarkPair& pair = head.landmarks[i];
+    // The template's direction carried by the warp: which side of the bone is outward.
+    const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
+    if (measured[i].on_skull) {
+      pair.skull = measured[i].skull;
+      pair.skull_normal = measuring_direction(measured[i].normal, carried);
+    } else {
+      const ClosestPoint at = new_skull.closest_point(warp.evaluate(pair.skull));
+      pair.skull = at.point;
+      pair.skull_normal = measuring_direction(new_skull.patch_normal(at, options.patch_radius_mm), carried);
+    }
+    const auto hit = new_skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, options.max_depth_mm);
+    if (hit) {
+      pair.skin = hit->point;
+      pair.depth_mm = hit->t;
+    } else {
+      pair.skin = new_skin_points.query(warp.evaluate(base.landmarks[i].skin))->point;
+      pair.depth_mm = (pair.skin - pair.skull).norm();
+      report.pairs_left.emplace_back(pair.skin_name,
+                                     "its skull normal misses the new skin: the closest skin point "
+                                     "to the warped template's is used");
+    }
+  }
+  for (TemplateSkinLandmark& l : head.skin_landmarks) {
+    const Landmark* given = input.skin_landmarks.find(l.name);
+    const Vec3 p = given ? place.apply(given->position_mm) : warp.evaluate(l.position);
+    l.position = new_skin_points.query(p)->point;
+  }
+  for (MuscleLayout& m : head.muscles) {
+    const std::vector<Vec3> grid = warp.evaluate_batch(m.grid);
+    for (std::size_t k = 0; k < grid.size(); ++k) m.grid[k] = new_skin_points.query(grid[k])->point;
+  }
+
+  // 5. The subject's texture on the template's atlas.
+  if (!input.texture.empty() && head.skin.has_uvs()) {
+    const ClosestPointQuery subject_points(skin);
+    const UvRaster raster = rasterize_uv(head.skin, options.texture_size, options.texture_size, 2);
+    const Image& texture = input.texture;
+    Image baked = bake(
+        raster, 3,
+        [&](const UvTexel& t) {
+          const auto cp = subject_points.query(t.position);
+          if (!cp) return Vec4f(0.5f, 0.5f, 0.5f, 1.0f);
+          return texture.sample_uv(uv_at(skin, cp->triangle, cp->barycentric));
+        },
+        8, Vec4f(0.5f, 0.5f, 0.5f, 1.0f), texture.encoding());
+    head.texture_png = encode_png(baked);
+    report.texture_baked = true;
+  }
+  return out;
+}
+
+}  // namespace forensim
