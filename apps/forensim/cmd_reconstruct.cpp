@@ -26,6 +26,7 @@
 #include "craniofacial/skull_completion.hpp"
 #include "craniofacial/skull_guides.hpp"
 #include "craniofacial/skull_input.hpp"
+#include "craniofacial/template_file.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
@@ -99,6 +100,11 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--build-sd")) job.build_sd = cli_job.build_sd;
   if (typed("--seed")) job.seed = cli_job.seed;
   if (typed("--template-detail")) job.template_detail = cli_job.template_detail;
+  if (typed("--template")) job.template_file = cli_job.template_file;
+  if (!job.template_file.empty() && typed("--template-detail")) {
+    throw InputError("--template-detail", job.template_detail,
+                     "is the built-in template's detail: a template file (--template) has its own");
+  }
   if (typed("--axes")) job.axes = cli_job.axes;
   if (typed("--texture-size")) job.texture_size = cli_job.texture_size;
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
@@ -195,9 +201,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     throw IoError(skull_path, "does not exist");
   }
   double template_s = 0.0, skull_s = 0.0;
+  const bool template_from_file = !job.template_file.empty();
   const auto build_template = [&] {
     Stopwatch part;
-    head = make_template_head(template_options);
+    head = template_from_file ? read_template_head(job.template_file) : make_template_head(template_options);
     template_s = part.seconds();
   };
   const auto read_skull = [&] {
@@ -240,6 +247,11 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull.source = "built-in template skull (head phantom)";
     skull.kind = "builtin";
     if (landmark_mode == "auto") detect(head);
+  } else if (landmark_mode == "auto" && template_from_file) {
+    // A template file is read at once; the skull is read and its landmarks detected with it.
+    build_template();
+    read_skull();
+    detect(head);
   } else if (landmark_mode == "auto") {
     // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
     // muscles are built, and the halves are joined after.
@@ -364,7 +376,11 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
 
   std::shared_ptr<Image> epidermis, normal_map;
   final_skin.material.name = "skin";
-  if (job.texture_size > 0 && head.skin.has_uvs()) {
+  if (job.texture_size > 0 && !head.texture_png.empty()) {
+    // A template built from a textured head carries its own map on the atlas; the warp keeps the UVs.
+    epidermis = std::make_shared<Image>(decode_png(head.texture_png, job.template_file + " texture"));
+    timings.add("skin maps", watch.lap());
+  } else if (job.texture_size > 0 && head.skin.has_uvs()) {
     // The maps are baked on the template's rest shape; the warp keeps the UVs, so they follow the face.
     SkinMaps maps = make_skin_maps(head.skin, job.texture_size, job.seed);
     epidermis = std::make_shared<Image>(std::move(maps.epidermis));
@@ -479,8 +495,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
 
   // 6. Provenance.
   nlohmann::json provenance;
-  provenance["template"] = {{"name", "built-in head phantom template"},
-                            {"detail", job.template_detail},
+  provenance["template"] = {{"name", template_from_file ? job.template_file : "built-in head phantom template"},
+                            {"source", head.source},
+                            {"detail", template_from_file ? "file" : job.template_detail},
+                            {"own_texture", !head.texture_png.empty()},
                             {"skin_triangles", head.skin.triangle_count()},
                             {"landmark_pairs", head.landmarks.size()},
                             {"muscles", head.muscles.size()},
@@ -559,7 +577,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   head_node.morph_targets = expression_targets;
   if (epidermis) {
     head_node.textures.base_color_png = encode_png(*epidermis);
-    head_node.textures.normal_png = encode_png(*normal_map);
+    if (normal_map) head_node.textures.normal_png = encode_png(*normal_map);
   }
   scene.nodes.push_back(std::move(head_node));
   GltfMeshNode skull_node;
@@ -573,9 +591,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   TriMesh obj_skin = final_skin;
   if (epidermis) {
     run.write("head_epidermis.png", encode_png(*epidermis));
-    run.write("head_normal.png", encode_png(*normal_map));
+    if (normal_map) run.write("head_normal.png", encode_png(*normal_map));
     obj_skin.material.base_color_texture = "head_epidermis.png";
-    obj_skin.material.normal_texture = "head_normal.png";
+    if (normal_map) obj_skin.material.normal_texture = "head_normal.png";
   }
   write_obj(run.file("head.obj"), obj_skin);
   run.add_output("head.obj");
@@ -672,6 +690,8 @@ const RegisterCommand reconstruct_command{
       sub->add_flag("--evaluate", a->evaluate,
                     "Measure the CT's real face (skin iso-surface) against the reconstruction over the face region "
                     "(forehead to chin, ear to ear): evaluation.json, evaluation.png");
+      sub->add_option("--template", j.template_file,
+                      "Template file made by forensim template build (default: the built-in template)");
       sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
           ->check(CLI::IsMember({"full", "coarse"}));
       sub->add_option("--axes", j.axes,

@@ -55,6 +55,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
   j.evaluate = root.get<bool>("evaluate", defaults.evaluate);
   j.measure_guides = root.get<bool>("measure_guides", defaults.measure_guides);
   j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
+  j.template_file = path_value(root, "template", defaults.template_file, base, {});
   j.axes = root.get_choice("axes", defaults.axes, {"lps", "yup", "auto"});
   j.seed = static_cast<std::uint64_t>(
       root.get_integer("seed", static_cast<long long>(defaults.seed), 0, std::numeric_limits<long long>::max()));
@@ -123,6 +124,7 @@ nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json 
   resolved["evaluate"] = job.evaluate;
   resolved["measure_guides"] = job.measure_guides;
   resolved["template_detail"] = job.template_detail;
+  if (!job.template_file.empty()) resolved["template"] = job.template_file;
   resolved["axes"] = job.axes;
   resolved["seed"] = job.seed;
   resolved["texture_size"] = job.texture_size;

@@ -22,6 +22,8 @@
 ///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
+///   template         a template file (forensim template build; template_file.hpp) instead of the built-in
+///                    template: its skin, skull, landmark pairs, muscles and texture
 ///   axes             "auto" (default: the detected head frame with automatic landmarks, else lps), "lps" or
 ///                    "yup": the skull's frame, for the pictures (a CT stored feet-up or tilted comes out upright
 ///                    with auto)
@@ -69,6 +71,7 @@ struct ReconstructJob {
   bool has_guides = false;
   bool interpolated_landmarks = true;
   std::string template_detail = "full";
+  std::string template_file;  ///< empty: the built-in template at template_detail
   std::string axes = "auto";
   std::uint64_t seed = 1;
   int texture_size = 1024;

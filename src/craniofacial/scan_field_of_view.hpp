@@ -26,6 +26,8 @@ class ScanFieldOfView {
 
   /// False for the default (unbounded) object.
   bool bounded() const { return m_bounded; }
+  /// The largest sample spacing of the lattice (mm); 0 when unbounded.
+  double max_spacing_mm() const { return m_bounded ? m_spacing.maxCoeff() : 0.0; }
   /// True when `point` (world mm) lies inside the lattice box, at least `margin_mm` from each of its faces (a
   /// negative margin lets the point lie that far outside). Always true when unbounded.
   bool contains(const Vec3& point, double margin_mm = 0.0) const;

@@ -64,7 +64,7 @@ std::optional<RayHit> skin_hit(const RayCaster& rays, const std::vector<char>& c
     auto hit = rays.intersect(skull, normal, t_min, max_t);
     if (!hit) return std::nullopt;
     if (caps.empty() || !caps[static_cast<std::size_t>(hit->triangle)]) return hit;
-    t_min = hit->t + 1e-6;
+    t_min = std::max(0.0, hit->t + 1e-6);
   }
   return std::nullopt;
 }
@@ -150,20 +150,26 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     const Vec3 base_patch = base_skull.patch_normal(base_skull.closest_point(pair.skull), options.patch_radius_mm);
     const Vec3 base_normal = measuring_direction(base_patch, pair.skull_normal);
     m.normal = measuring_direction(m.normal, to_subject * base_normal);
-    const auto hit = skin_hit(subject_skin_rays, caps, m.skull, m.normal, options.max_depth_mm);
-    if (!hit) {
-      report.pairs_left.emplace_back(pair.skin_name, fmt::format("the skull normal at {} meets no skin within {} mm",
-                                                                 bone_of[i], options.max_depth_mm));
-      continue;
-    }
     const auto base_hit = skin_hit(base_skin_rays, {}, pair.skull, base_normal, options.max_depth_mm);
     if (!base_hit) {
       report.pairs_left.emplace_back(pair.skin_name, "the template's own skull normal there meets no skin");
       continue;
     }
-    from.push_back(base_hit->point);
-    to.push_back(hit->point);
-    report.pairs_from_skull.push_back(pair.skin_name);
+    const auto hit = skin_hit(subject_skin_rays, caps, m.skull, m.normal, options.max_depth_mm);
+    if (hit && (!input.skin_view.bounded() || input.skin_view.contains(hit->point, input.skin_view.max_spacing_mm()))) {
+      from.push_back(base_hit->point);
+      to.push_back(hit->point);
+      report.pairs_from_skull.push_back(pair.skin_name);
+    } else if (input.skin_view.bounded() && !input.skin_view.contains(m.skull + base_hit->t * m.normal)) {
+      // The skin there was not scanned (a CT's vault): the template's own depth along the subject's normal, so
+      // that the skin follows the (completed) skull instead of the warp's extrapolation.
+      from.push_back(base_hit->point);
+      to.push_back(m.skull + base_hit->t * m.normal);
+      report.pairs_unscanned.push_back(pair.skin_name);
+    } else {
+      report.pairs_left.emplace_back(pair.skin_name, fmt::format("the skull normal at {} meets no skin within {} mm",
+                                                                 bone_of[i], options.max_depth_mm));
+    }
   }
   for (const Landmark& l : input.skin_landmarks.landmarks()) {
     for (const TemplateSkinLandmark& s : base.skin_landmarks) {
@@ -201,67 +207,134 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
   warped_skin.positions = warped;
   warped_skin.normals = vertex_normals(warped_skin);
 
-  // 3. The warped skin onto the subject's, along each vertex normal.
+  // 3. The warped skin onto the subject's (placed) in rounds: each vertex along its normal to the nearest facing
+  // hit; the displacements of the vertices without one (the vault a CT did not scan, folds) filled in smoothly
+  // from their neighbours' (a harmonic extension), so the skin stays whole; then again from there.
+  const RayCaster placed_skin_rays(skin);
+  const Rigid unplace{place.rotation.transpose(), -(place.rotation.transpose() * place.translation)};
+  const double sample_mm = input.skin_view.bounded() ? input.skin_view.max_spacing_mm() : 0.0;
+  const auto placed_view_contains = [&](const Vec3& p) {
+    return input.skin_view.contains(unplace.apply(p), sample_mm);
+  };
   const std::size_t nv = warped.size();
+  std::vector<std::vector<std::size_t>> neighbours(nv);
+  for (const Tri& t : base.skin.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<std::size_t>(t[k]);
+      const auto b = static_cast<std::size_t>(t[(k + 1) % 3]);
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  }
+  for (auto& n : neighbours) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
   std::vector<Vec3> conformed = warped;
   std::vector<char> moved_flag(nv, 0);
-  parallel_for(
-      0, nv,
-      [&](std::size_t v) {
-        const Vec3& p = warped[v];
-        const Vec3& n = warped_skin.normals[v];
-        if (!(n.squaredNorm() > 0.5)) return;
-        std::optional<RayHit> best;
-        double best_t = options.conform_reach_mm;
-        for (const double sign : {1.0, -1.0}) {
-          if (best && best_t <= 0.0) break;
-          double t_min = 0.0;
-          for (int k = 0; k < 6; ++k) {
-            const auto hit = subject_skin_rays.intersect(p, sign * n, t_min, best_t);
-            if (!hit) break;
-            const bool cap = !caps.empty() && caps[static_cast<std::size_t>(hit->triangle)];
-            if (!cap && hit->normal.dot(n) > 0.3) {
-              best = hit;
-              best_t = std::max(hit->t, 0.0);
-              break;
+  const auto conform_round = [&](bool last) {
+    TriMesh current = warped_skin;
+    current.positions = conformed;
+    const std::vector<Vec3> normals = vertex_normals(current);
+    std::vector<Vec3> shift(nv, Vec3::Zero());
+    std::fill(moved_flag.begin(), moved_flag.end(), 0);
+    parallel_for(
+        0, nv,
+        [&](std::size_t v) {
+          const Vec3& p = conformed[v];
+          const Vec3& n = normals[v];
+          if (!(n.squaredNorm() > 0.5)) return;
+          std::optional<RayHit> best;
+          double best_t = options.conform_reach_mm;
+          for (const double sign : {1.0, -1.0}) {
+            if (best && best_t <= 0.0) break;
+            double t_min = 0.0;
+            for (int k = 0; k < 6; ++k) {
+              const auto hit = placed_skin_rays.intersect(p, sign * n, t_min, best_t);
+              if (!hit) break;
+              // Not a cap, nor the rim of the skin where the scan's cut flares it (within a sample of the cut).
+              const bool cap = !caps.empty() && caps[static_cast<std::size_t>(hit->triangle)];
+              const bool rim = input.skin_view.bounded() && !placed_view_contains(hit->point);
+              if (!cap && !rim && hit->normal.dot(n) > 0.3) {
+                best = hit;
+                best_t = std::max(hit->t, 0.0);
+                break;
+              }
+              t_min = std::max(0.0, hit->t + 1e-6);
             }
-            t_min = hit->t + 1e-6;
           }
+          if (best) {
+            shift[v] = best->point - p;
+            moved_flag[v] = 1;
+          }
+        },
+        256);
+    // A hit that disagrees with most of its neighbours' by more than 3 mm is a stray (the far wall of a nostril,
+    // an object in the scan): dropped, so that the extension fills it in.
+    std::vector<char> keep = moved_flag;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!moved_flag[v]) continue;
+      std::size_t hits = 0, far = 0;
+      for (const std::size_t u : neighbours[v]) {
+        if (!moved_flag[u]) continue;
+        ++hits;
+        if ((shift[u] - shift[v]).norm() > 3.0) ++far;
+      }
+      if (hits > 0 && 2 * far > hits) keep[v] = 0;
+    }
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (moved_flag[v] && !keep[v]) shift[v] = Vec3::Zero();
+    }
+    moved_flag = std::move(keep);
+    // Harmonic extension (Gauss-Seidel in vertex order: deterministic), then, before the last round, a light
+    // smoothing of every shift so that single stray hits do not tear the skin.
+    for (int sweep = 0; sweep < 400; ++sweep) {
+      for (std::size_t v = 0; v < nv; ++v) {
+        if (moved_flag[v] || neighbours[v].empty()) continue;
+        Vec3 sum = Vec3::Zero();
+        for (const std::size_t u : neighbours[v]) sum += shift[u];
+        shift[v] = sum / static_cast<double>(neighbours[v].size());
+      }
+    }
+    if (!last) {
+      for (int sweep = 0; sweep < 3; ++sweep) {
+        std::vector<Vec3> smoothed = shift;
+        for (std::size_t v = 0; v < nv; ++v) {
+          if (neighbours[v].empty()) continue;
+          Vec3 sum = Vec3::Zero();
+          for (const std::size_t u : neighbours[v]) sum += shift[u];
+          smoothed[v] = 0.5 * shift[v] + 0.5 * sum / static_cast<double>(neighbours[v].size());
         }
-        if (best) {
-          conformed[v] = best->point;
-          moved_flag[v] = 1;
-        }
-      },
-      256);
-  // Triangles the move turned over (a fold on a lip, the nose's tip, an ear's rim): their corners go to their
-  // closest points on the subject's skin instead; those still turned over keep the warp.
-  const ClosestPointQuery subject_skin_points(input.skin);
+        shift = std::move(smoothed);
+      }
+    }
+    for (std::size_t v = 0; v < nv; ++v) conformed[v] += shift[v];
+  };
+  for (int round = 0; round < 6; ++round) conform_round(round == 5);
+  // Triangles turned over against the warped skin (a fold on a lip, an ear's rim): their corners take the mean of
+  // their neighbours' positions.
   const std::vector<Vec3> warped_face_normal = face_normals(warped_skin);
-  for (int round = 0; round < 5; ++round) {
+  for (int round = 0; round < 20; ++round) {
     TriMesh probe = warped_skin;
     probe.positions = conformed;
     const std::vector<Vec3> fn = face_normals(probe);
     std::size_t flipped = 0;
+    std::vector<char> fix(nv, 0);
     for (std::size_t f = 0; f < fn.size(); ++f) {
       if (fn[f].dot(warped_face_normal[f]) >= 0.0) continue;
       ++flipped;
-      if (round == 4) continue;
-      for (const Index vi : probe.triangles[f]) {
-        const auto v = static_cast<std::size_t>(vi);
-        const auto cp = round == 0 ? subject_skin_points.query(warped[v]) : std::nullopt;
-        const bool cap = cp && !caps.empty() && caps[static_cast<std::size_t>(cp->triangle)];
-        if (cp && !cap && cp->distance <= options.conform_reach_mm) {
-          conformed[v] = cp->point;
-          moved_flag[v] = 1;
-        } else {
-          conformed[v] = warped[v];
-          moved_flag[v] = 0;
-        }
-      }
+      for (const Index vi : probe.triangles[f]) fix[static_cast<std::size_t>(vi)] = 1;
     }
     report.flipped_triangles = flipped;
-    if (flipped == 0) break;
+    if (flipped == 0 || round == 19) break;
+    const std::vector<Vec3> before = conformed;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!fix[v] || neighbours[v].empty()) continue;
+      Vec3 sum = Vec3::Zero();
+      for (const std::size_t u : neighbours[v]) sum += before[u];
+      conformed[v] = sum / static_cast<double>(neighbours[v].size());
+      moved_flag[v] = 0;
+    }
   }
   double moved_sum = 0.0;
   for (std::size_t v = 0; v < nv; ++v) {

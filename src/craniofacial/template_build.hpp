@@ -10,7 +10,8 @@
 ///    subject's skull, its direction n' (the skull normal averaged over a patch, skull_normals.hpp) and the
 ///    subject's skin point q' where s' + t n' first meets the subject's skin (t <= max_depth_mm). Skin landmarks
 ///    given on the subject's skin (a head mesh: placed in 3D Slicer, or transferred by registration) are taken
-///    as they are.
+///    as they are. Where the scan did not hold the skin (a CT's vault above its first slice), the target is the
+///    template's own depth along the subject's normal.
 /// 2. The subject is placed in the template's frame (the rigid fit of those skin points; it keeps its size), and
 ///    the biharmonic RBF warp of eq. 1 from the template's skin points onto the subject's carries the template's
 ///    skin, skull (when the subject has none), skin landmarks and muscle grids. Skin points only: a skull point
@@ -55,8 +56,10 @@ struct TemplateBuildOptions {
 
 /// What the build did, for the run record.
 struct TemplateBuildReport {
-  std::vector<std::string> pairs_from_skull;                    ///< skin names of pairs measured on the subject's skull
-  std::vector<std::string> pairs_from_skin;                     ///< skin names of pairs given on the subject's skin
+  std::vector<std::string> pairs_from_skull;  ///< skin names of pairs measured on the subject's skull
+  std::vector<std::string> pairs_from_skin;   ///< skin names of pairs given on the subject's skin
+  /// Pairs whose skin the scan did not hold (a CT's vault): the template's own depth along the subject's normal.
+  std::vector<std::string> pairs_unscanned;
   std::vector<std::pair<std::string, std::string>> pairs_left;  ///< pairs that kept the warp (name, why)
   std::size_t warp_landmarks = 0;                               ///< correspondences of the warp
   std::size_t vertices_conformed = 0;                           ///< skin vertices moved onto the subject's skin

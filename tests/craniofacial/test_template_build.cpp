@@ -145,6 +145,9 @@ TEST(TemplateBuild, FromAMovedLargerCopyIsTheTemplateAtThatSize) {
   EXPECT_LT(max_distance_ratio_error(base.skin.positions, built.head.skin.positions, s.scale), 1e-5);
   EXPECT_LT(max_distance_ratio_error(base.skull.positions, built.head.skull.positions, s.scale), 1e-6);
   EXPECT_EQ(built.report.flipped_triangles, 0u);
+  // The skin found the copy's (placed in the template's frame) along its normals.
+  EXPECT_GT(built.report.vertices_conformed, built.head.skin.positions.size() * 99 / 100);
+  EXPECT_LT(built.report.mean_conform_mm, 1e-6);
   // Placed in the template's frame: the centroid of the skull landmarks lands on the template's (scaled about it).
   Vec3 cb = Vec3::Zero(), cn = Vec3::Zero();
   for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
