@@ -22,25 +22,11 @@
 #include "phantoms/ct_head_phantom.hpp"
 #include "pictures.hpp"
 #include "render/sheet.hpp"
+#include "template_cmd.hpp"
 #include "volume/volume_reader.hpp"
 
 namespace forensim::cli {
 namespace {
-
-struct TemplateArgs {
-  std::string ct;                  ///< a CT volume, or "phantom"
-  std::string head;                ///< a head mesh
-  std::string texture;             ///< the head mesh's base-colour map (else the one embedded in its file)
-  std::string skin_landmarks;      ///< skin landmarks on the head mesh (.mrk.json or .csv)
-  std::string landmarks = "auto";  ///< the CT skull's landmarks: auto or a file
-  std::string unit = "auto";
-  double mesh_scale = 0.0;
-  std::optional<double> bone_iso;
-  std::string detail = "full";  ///< the built-in template carried onto the head
-  int texture_size = 1024;
-  int picture_size = 768;
-  std::string out;
-};
 
 nlohmann::json report_json(const TemplateBuildReport& r) {
   nlohmann::json left = nlohmann::json::array();
@@ -55,6 +41,8 @@ nlohmann::json report_json(const TemplateBuildReport& r) {
 Image read_texture(const std::string& path) {
   return read_image(path);
 }
+
+}  // namespace
 
 int run_template_build(const TemplateArgs& a) {
   if (a.ct.empty() == a.head.empty()) {
@@ -130,13 +118,20 @@ int run_template_build(const TemplateArgs& a) {
     if (!input.texture.empty() && !input.skin.has_uvs()) {
       throw InputError(a.head, "texture coordinates", "the head mesh has none: its texture cannot be carried");
     }
-    input.skin_landmarks = read_landmarks(a.skin_landmarks);
+    double registration_rms = -1.0;
+    if (a.skin_landmarks == "auto") {
+      input.skin_landmarks = skin_landmarks_by_registration(base, input.skin, &registration_rms);
+      timings.add("skin landmarks by registration", watch.lap());
+    } else {
+      input.skin_landmarks = read_landmarks(a.skin_landmarks);
+    }
     input.source = "head mesh " + a.head;
     inputs = {{"head", a.head},
               {"skin_triangles", input.skin.triangle_count()},
               {"texture", a.texture.empty() ? (input.texture.empty() ? "none" : "embedded") : a.texture},
               {"skin_landmarks", a.skin_landmarks},
               {"skin_landmark_count", input.skin_landmarks.size()}};
+    if (registration_rms >= 0.0) inputs["registration_rms_mm"] = registration_rms;
     timings.add("head mesh", watch.lap());
   }
 
@@ -257,6 +252,8 @@ int run_template_build(const TemplateArgs& a) {
   return 0;
 }
 
+namespace {
+
 const RegisterCommand template_command{
     "template", [](CLI::App& app) {
       auto* sub = app.add_subcommand("template", "Template heads for forensim reconstruct");
@@ -271,8 +268,9 @@ const RegisterCommand template_command{
       build->add_option("--ct", a->ct, "CT volume holding skin and skull, or 'phantom' (the built-in CT)");
       build->add_option("--head", a->head, "Head mesh (any format Assimp reads; its UVs and texture are kept)");
       build->add_option("--texture", a->texture, "Base-colour map of the head mesh (PNG or JPEG)");
-      build->add_option("--skin-landmarks", a->skin_landmarks,
-                        "Skin landmarks on the head mesh (.mrk.json or .csv, the template's names: se', prn', ...)");
+      build->add_option(
+          "--skin-landmarks", a->skin_landmarks,
+          "Skin landmarks on the head mesh (.mrk.json or .csv, the template's names: se', prn', ...), or auto");
       build->add_option("--landmarks", a->landmarks, "The CT skull's landmarks: auto (detected) or a file");
       build->add_option("--unit", a->unit, "Unit of the head mesh: auto, m, cm, mm or in")
           ->check(CLI::IsMember({"auto", "m", "cm", "mm", "in"}));

@@ -11,6 +11,7 @@
 #include "craniofacial/landmark_vocabulary.hpp"
 #include "craniofacial/rbf_warp.hpp"
 #include "craniofacial/skull_normals.hpp"
+#include "craniofacial/skull_registration.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
 #include "mesh_processing/uv_atlas.hpp"
@@ -76,6 +77,24 @@ Vec3 measuring_direction(const Vec3& patch, const Vec3& reference) {
 }
 
 }  // namespace
+
+LandmarkSet skin_landmarks_by_registration(const TemplateHead& base, const TriMesh& head, double* rms_mm) {
+  require_input(!head.triangles.empty(), "head mesh", "", "has no triangles");
+  SkullRegistrationOptions options;
+  options.similarity.scale_prior_sd = 0.0;  // a scan's size is its own: the moments start it
+  const SkullRegistration reg = register_skull(base.skin, head, options);
+  if (rms_mm) *rms_mm = reg.rms_mm;
+  const ClosestPointQuery on_head(head);
+  LandmarkSet out("skin landmarks by registration");
+  for (const TemplateLandmarkPair& p : base.landmarks) {
+    out.add({p.skin_name, on_head.query(reg.map(p.skin))->point, LandmarkSource::detected, 1.0});
+  }
+  for (const TemplateSkinLandmark& l : base.skin_landmarks) {
+    if (!out.contains(l.name))
+      out.add({l.name, on_head.query(reg.map(l.position))->point, LandmarkSource::detected, 1.0});
+  }
+  return out;
+}
 
 TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildInput& input,
                                   const TemplateBuildOptions& options) {

@@ -74,6 +74,13 @@ struct TemplateBuild {
   TemplateBuildReport report;
 };
 
+/// Skin landmarks on a head mesh found by registering the template's skin onto it (skull_registration.hpp: a
+/// similarity from many starts, its scale free, then the non-rigid field) and moving each of the template's skin
+/// points (its pairs' and its skin-only landmarks) to the closest point of the head: a start for landmarks that a
+/// user checks and moves (3D Slicer). `rms_mm` receives the registration's trimmed RMS when not null. Throws
+/// InputError for an empty head, or when the registration fails.
+LandmarkSet skin_landmarks_by_registration(const TemplateHead& base, const TriMesh& head, double* rms_mm = nullptr);
+
 /// The template made from `input` by carrying `base` onto it (steps above). Throws InputError naming the input:
 /// no skin, fewer than 4 correspondences (no landmark of the subject pairs with one of the template's, or they
 /// lie in one plane), landmark names the vocabulary does not know, a texture without skin UVs, options out of

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -197,6 +199,27 @@ TEST(TemplateBuild, FromSkinLandmarksAndATextureBakesTheTextureOntoTheAtlas) {
   ASSERT_GT(count, 1000u);
   // Linear values after an 8-bit sRGB round trip: about 1/255 where a texel sees its own UV.
   EXPECT_LT(sum / (2.0 * static_cast<double>(count)), 0.01);
+}
+
+TEST(TemplateBuild, SkinLandmarksByRegistrationFindTheTemplatesOnAMovedCopy) {
+  const TemplateHead& base = coarse_template_head();
+  Similar s;
+  s.scale = 1.1;
+  s.rotation = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix();
+  s.translation = Vec3(10.0, 20.0, -5.0);
+  const TriMesh head = s.apply(base.skin);
+  double rms = -1.0;
+  const LandmarkSet found = skin_landmarks_by_registration(base, head, &rms);
+  EXPECT_LT(rms, 0.5);
+  ASSERT_EQ(found.size(), base.landmarks.size() + base.skin_landmarks.size());
+  std::vector<double> errors;
+  for (const TemplateLandmarkPair& p : base.landmarks)
+    errors.push_back((found.at(p.skin_name).position_mm - s.apply(p.skin)).norm());
+  std::sort(errors.begin(), errors.end());
+  std::printf("skin landmarks by registration: median %.2f mm, largest %.2f mm\n", errors[errors.size() / 2],
+              errors.back());
+  EXPECT_LT(errors[errors.size() / 2], 1.0);
+  EXPECT_LT(errors.back(), 4.0);
 }
 
 TEST(TemplateBuild, RefusesTooFewLandmarksAndATextureWithoutUvs) {
