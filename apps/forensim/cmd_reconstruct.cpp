@@ -399,16 +399,9 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     auto skin_ptr = std::make_shared<const TriMesh>(final_skin);
     auto skull_ptr = std::make_shared<const TriMesh>(skull.mesh);
     Scene overlay = skin_over_bone_scene(skin_ptr, skull_ptr, 0.35, axes);
-    for (const DepthVector& v : vectors.vectors) {
-      LineOverlay line;
-      line.from = v.bone_mm;
-      line.to = v.skin_mm;
-      overlay.lines.push_back(line);
-      PointOverlay dot;
-      dot.position = v.bone_mm;
-      dot.radius_px = 2.5;
-      overlay.points.push_back(dot);
-    }
+    std::vector<std::pair<Vec3, Vec3>> depth_lines;
+    for (const DepthVector& v : vectors.vectors) depth_lines.emplace_back(v.bone_mm, v.skin_mm);
+    add_depth_vectors(overlay, depth_lines);
     std::vector<SheetCell> cells;
     for (const auto& [view, caption] : std::vector<std::pair<std::string, std::string>>{
              {"front", "front"}, {"left", "side"}, {"three_quarter", "three-quarter"}}) {

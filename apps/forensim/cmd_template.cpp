@@ -181,16 +181,9 @@ int run_template_build(const TemplateArgs& a) {
     auto skin_ptr = std::make_shared<const TriMesh>(head.skin);
     auto skull_ptr = std::make_shared<const TriMesh>(head.skull);
     Scene overlay = skin_over_bone_scene(skin_ptr, skull_ptr, 0.35, axes);
-    for (const TemplateLandmarkPair& p : head.landmarks) {
-      LineOverlay line;
-      line.from = p.skull;
-      line.to = p.skin;
-      overlay.lines.push_back(line);
-      PointOverlay dot;
-      dot.position = p.skull;
-      dot.radius_px = 2.5;
-      overlay.points.push_back(dot);
-    }
+    std::vector<std::pair<Vec3, Vec3>> vectors;
+    for (const TemplateLandmarkPair& p : head.landmarks) vectors.emplace_back(p.skull, p.skin);
+    add_depth_vectors(overlay, vectors);
     std::vector<SheetCell> cells;
     cells.push_back({render_view(overlay, settings, "front", axes), "front"});
     cells.push_back({render_view(overlay, settings, "left", axes), "side"});

@@ -62,6 +62,19 @@ std::shared_ptr<const Image> load_base_texture(const TriMesh& mesh) {
   }
 }
 
+void add_depth_vectors(Scene& scene, const std::vector<std::pair<Vec3, Vec3>>& skull_to_skin) {
+  for (const auto& [skull, skin] : skull_to_skin) {
+    LineOverlay line;
+    line.from = skull;
+    line.to = skin;
+    scene.lines.push_back(line);
+    PointOverlay dot;
+    dot.position = skull;
+    dot.radius_px = 2.5;
+    scene.points.push_back(dot);
+  }
+}
+
 Scene skin_over_bone_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone,
                            double skin_opacity, const ViewAxes& axes) {
   Scene scene;

@@ -32,6 +32,10 @@ std::shared_ptr<const Image> load_base_texture(const TriMesh& mesh);
 Scene skin_over_bone_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone,
                            double skin_opacity, const ViewAxes& axes);
 
+/// Draws tissue-depth vectors into `scene`: a line from each skull point to its skin point and a dot on the skull
+/// (the paper's Figures 1 and 9).
+void add_depth_vectors(Scene& scene, const std::vector<std::pair<Vec3, Vec3>>& skull_to_skin);
+
 /// Scene of skin and bone cut by the plane through the skin's centre with normal `cut_normal` (the side the
 /// normal points to is removed), showing bone inside flesh.
 Scene cutaway_scene(std::shared_ptr<const TriMesh> skin, std::shared_ptr<const TriMesh> bone, const Vec3& cut_normal,

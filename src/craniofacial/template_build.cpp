@@ -371,7 +371,25 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
   if (skull) {
     head.skull = *skull;
   } else {
-    head.skull.positions = warp.evaluate_batch(base.skull.positions);
+    // No skull: the template's, placed under the new skin at the template's own tissue depths: each pair's skull
+    // point goes to its skin point less its depth along the carried normal, and the RBF warp of eq. 1 on those
+    // points carries the whole skull (the skin's warp alone would leave it wherever the skin's shape puts it).
+    const ClosestPointQuery on_new_skin(head.skin);
+    std::vector<Vec3> skull_from, skull_to;
+    for (const TemplateLandmarkPair& pair : base.landmarks) {
+      if (!input.skin_landmarks.contains(pair.skin_name)) continue;
+      const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
+      const Vec3 q = on_new_skin.query(warp.evaluate(pair.skin))->point;
+      skull_from.push_back(pair.skull);
+      skull_to.push_back(q - pair.depth_mm * carried);
+    }
+    if (skull_from.size() >= 4) {
+      const RbfWarp skull_warp(skull_from, skull_to, source + " skull under the skin");
+      head.skull.positions = skull_warp.evaluate_batch(base.skull.positions);
+      report.skull_at_template_depths = true;
+    } else {
+      head.skull.positions = warp.evaluate_batch(base.skull.positions);
+    }
   }
   head.skull.normals = vertex_normals(head.skull);
 

@@ -14,13 +14,18 @@
 ///    template's own depth along the subject's normal.
 /// 2. The subject is placed in the template's frame (the rigid fit of those skin points; it keeps its size), and
 ///    the biharmonic RBF warp of eq. 1 from the template's skin points onto the subject's carries the template's
-///    skin, skull (when the subject has none), skin landmarks and muscle grids. Skin points only: a skull point
-///    a few mm under a skin point with another displacement would bend the warp between them.
-/// 3. Each warped skin vertex moves onto the subject's skin along its normal (the nearest hit either way within
-///    conform_reach_mm whose surface faces the same way; no hit on a CT's cut caps): the subject's face in the
-///    template's mesh. Vertices with no such hit (the vault a CT did not scan, hair a scan lacks) keep the warp.
-/// 4. Each pair's skin point is where s' + t n' meets the new skin, its depth t (the subject's own tissue
-///    depths); skin-only landmarks and muscle grids move to their closest points on the new skin.
+///    skin, skin landmarks and muscle grids. Skin points only: a skull point a few mm under a skin point with
+///    another displacement would bend the warp between them.
+/// 3. The warped skin moves onto the subject's in rounds: each vertex along its normal to the nearest hit either
+///    way within conform_reach_mm whose surface faces the same way (not a CT's cut cap nor the rim at the cut; a
+///    hit disagreeing with most of its neighbours' by more than 3 mm is dropped); the shifts of the vertices
+///    without a hit (the vault a CT did not scan, folds) are filled in from their neighbours' (a harmonic
+///    extension), so the skin stays whole. Triangles still turned over take their neighbours' mean.
+/// 4. The skull: the subject's, or without one (a head mesh) the template's placed under the new skin at the
+///    template's own tissue depths (each pair's skull point at its skin point less its depth along the carried
+///    normal, by a second warp on those points). Each pair's skin point is where s' + t n' meets the new skin,
+///    its depth t (the subject's own depths with a CT); skin-only landmarks and muscle grids move to their
+///    closest points on the new skin.
 /// 5. A head mesh's texture is baked onto the template's atlas: each texel's point of the new skin looks up the
 ///    closest point of the subject's mesh and samples its texture there.
 
@@ -67,6 +72,7 @@ struct TemplateBuildReport {
   double mean_conform_mm = 0.0;       ///< mean distance a conformed vertex moved
   std::size_t flipped_triangles = 0;  ///< skin triangles whose normal turned against the warped skin's
   bool texture_baked = false;
+  bool skull_at_template_depths = false;  ///< no skull given: the template's placed at its own depths under the skin
 };
 
 struct TemplateBuild {
