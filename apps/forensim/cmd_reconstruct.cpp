@@ -101,10 +101,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--seed")) job.seed = cli_job.seed;
   if (typed("--template-detail")) job.template_detail = cli_job.template_detail;
   if (typed("--template")) job.template_file = cli_job.template_file;
-  if (!job.template_file.empty() && typed("--template-detail")) {
-    throw InputError("--template-detail", job.template_detail,
-                     "is the built-in template's detail: a template file (--template) has its own");
-  }
+
   if (typed("--axes")) job.axes = cli_job.axes;
   if (typed("--texture-size")) job.texture_size = cli_job.texture_size;
   if (typed("--picture-size")) job.picture_size = cli_job.picture_size;
@@ -248,10 +245,22 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     skull.kind = "builtin";
     if (landmark_mode == "auto") detect(head);
   } else if (landmark_mode == "auto" && template_from_file) {
-    // A template file is read at once; the skull is read and its landmarks detected with it.
-    build_template();
-    read_skull();
-    detect(head);
+    // The skull's landmarks are found with the built-in template's skull, the reference the registration is made
+    // for (a template built from a scan has a skull warped under its skin, or a CT's partial one); the template
+    // file's skin and pairs are what is fitted. The file is read and the skull read beside the reference's build.
+    TemplateHead reference;
+    parallel_for(
+        0, 2,
+        [&](std::size_t part) {
+          if (part == 0) {
+            build_template();
+          } else {
+            reference = make_template_skull(template_options);
+            read_skull();
+          }
+        },
+        1);
+    detect(reference);
   } else if (landmark_mode == "auto") {
     // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
     // muscles are built, and the halves are joined after.
@@ -488,14 +497,17 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
 
   // 6. Provenance.
   nlohmann::json provenance;
-  provenance["template"] = {{"name", template_from_file ? job.template_file : "built-in head phantom template"},
-                            {"source", head.source},
-                            {"detail", template_from_file ? "file" : job.template_detail},
-                            {"own_texture", !head.texture_png.empty()},
-                            {"skin_triangles", head.skin.triangle_count()},
-                            {"landmark_pairs", head.landmarks.size()},
-                            {"muscles", head.muscles.size()},
-                            {"uv_atlas", head.skin.has_uvs()}};
+  provenance["template"] = {
+      {"name", template_from_file ? job.template_file : "built-in head phantom template"},
+      {"source", head.source},
+      {"detail", template_from_file ? "file" : job.template_detail},
+      {"landmark_reference", template_from_file && detection ? "built-in template skull (" + job.template_detail + ")"
+                                                             : std::string("the template's skull")},
+      {"own_texture", !head.texture_png.empty()},
+      {"skin_triangles", head.skin.triangle_count()},
+      {"landmark_pairs", head.landmarks.size()},
+      {"muscles", head.muscles.size()},
+      {"uv_atlas", head.skin.has_uvs()}};
   provenance["skull"] = {{"source", skull.source},
                          {"kind", skull.kind.empty() ? "mesh" : skull.kind},
                          {"triangles", skull.mesh.triangle_count()},
@@ -685,7 +697,9 @@ const RegisterCommand reconstruct_command{
                     "(forehead to chin, ear to ear): evaluation.json, evaluation.png");
       sub->add_option("--template", j.template_file,
                       "Template file made by forensim template build (default: the built-in template)");
-      sub->add_option("--template-detail", j.template_detail, "Template head: full or coarse (quicker)")
+      sub->add_option(
+             "--template-detail", j.template_detail,
+             "Template head: full or coarse (quicker); with --template, the skull the landmarks are found with")
           ->check(CLI::IsMember({"full", "coarse"}));
       sub->add_option("--axes", j.axes,
                       "Frame of the skull for the pictures: auto (default: the detected head frame with "

@@ -23,7 +23,8 @@
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
 ///   template         a template file (forensim template build; template_file.hpp) instead of the built-in
-///                    template: its skin, skull, landmark pairs, muscles and texture
+///                    template: its skin, skull, landmark pairs, muscles and texture (automatic landmarks are
+///                    still found with the built-in template's skull at template_detail)
 ///   axes             "auto" (default: the detected head frame with automatic landmarks, else lps), "lps" or
 ///                    "yup": the skull's frame, for the pictures (a CT stored feet-up or tilted comes out upright
 ///                    with auto)

@@ -367,7 +367,12 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
   head.skin.normals = vertex_normals(head.skin);
   if (head.skin.has_uvs()) head.uv_l2_stretch = uv_l2_stretch(head.skin);
 
-  // The skull: the subject's, or the template's carried by the warp.
+  // The skull: the subject's, or the template's placed under the skin (its pairs then hold by construction).
+  struct PlacedPair {
+    bool placed = false;
+    Vec3 skull = Vec3::Zero(), skin = Vec3::Zero();
+  };
+  std::vector<PlacedPair> placed_pair(base.landmarks.size());
   if (skull) {
     head.skull = *skull;
   } else {
@@ -376,12 +381,14 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     // points carries the whole skull (the skin's warp alone would leave it wherever the skin's shape puts it).
     const ClosestPointQuery on_new_skin(head.skin);
     std::vector<Vec3> skull_from, skull_to;
-    for (const TemplateLandmarkPair& pair : base.landmarks) {
+    for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
+      const TemplateLandmarkPair& pair = base.landmarks[i];
       if (!input.skin_landmarks.contains(pair.skin_name)) continue;
       const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
       const Vec3 q = on_new_skin.query(warp.evaluate(pair.skin))->point;
       skull_from.push_back(pair.skull);
       skull_to.push_back(q - pair.depth_mm * carried);
+      placed_pair[i] = {true, skull_to.back(), q};
     }
     if (skull_from.size() >= 4) {
       const RbfWarp skull_warp(skull_from, skull_to, source + " skull under the skin");
@@ -389,6 +396,7 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
       report.skull_at_template_depths = true;
     } else {
       head.skull.positions = warp.evaluate_batch(base.skull.positions);
+      for (PlacedPair& p : placed_pair) p.placed = false;
     }
   }
   head.skull.normals = vertex_normals(head.skull);
@@ -401,6 +409,16 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     TemplateLandmarkPair& pair = head.landmarks[i];
     // The template's direction carried by the warp: which side of the bone is outward.
     const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
+    if (placed_pair[i].placed) {
+      // The skull placed at this pair's own depth under its given skin point: the pair is those two points (a
+      // ray along the new skull's patch normal would meet a fold of the skin elsewhere: subnasale, the lips).
+      pair.skull = placed_pair[i].skull;
+      pair.skin = placed_pair[i].skin;
+      pair.depth_mm = (pair.skin - pair.skull).norm();
+      const Vec3 along = pair.skin - pair.skull;
+      pair.skull_normal = along.norm() > 1e-9 ? Vec3(along / along.norm()) : carried;
+      continue;
+    }
     if (measured[i].on_skull) {
       pair.skull = measured[i].skull;
       pair.skull_normal = measuring_direction(measured[i].normal, carried);

@@ -54,8 +54,9 @@ TEST(TemplateCli, ReconstructRefusesABadTemplateFileNamingIt) {
               (dir / "b").string());
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("none.cbor"), std::string::npos) << r.output;
-  r = run_cli("reconstruct --template " + garbage.string() + " --template-detail coarse -o " + (dir / "c").string());
+  r = run_cli("reconstruct --template " + garbage.string() + " --ct phantom --landmarks auto -o " +
+              (dir / "c").string());
   EXPECT_EQ(r.exit_code, code(ErrorKind::input)) << r.output;
-  EXPECT_NE(r.output.find("--template-detail"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("garbage.cbor"), std::string::npos) << r.output;
   for (const char* out : {"a", "b", "c"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
 }
