@@ -45,8 +45,21 @@ Image read_texture(const std::string& path) {
 }  // namespace
 
 int run_template_build(const TemplateArgs& a) {
+  if (a.builtin) {
+    if (!a.ct.empty() || !a.head.empty()) throw Error("--builtin takes no --ct or --head", ErrorKind::usage);
+    Stopwatch watch;
+    const TemplateHead head = make_template_head(template_head_options(a.detail));
+    RunFolder run(a.out, "template build");
+    run.write("template.cbor", encode_template_head(head));
+    run.set_job({{"builtin", true}, {"detail", a.detail}});
+    run.timings().add("built-in template", watch.seconds());
+    run.write_record();
+    std::printf("wrote %s/template.cbor: the built-in template (%s), %zu skin vertices; %s\n", a.out.c_str(),
+                a.detail.c_str(), head.skin.vertex_count(), format_seconds(watch.seconds()).c_str());
+    return 0;
+  }
   if (a.ct.empty() == a.head.empty()) {
-    throw Error("give one of --ct (a CT volume or 'phantom') and --head (a head mesh)", ErrorKind::usage);
+    throw Error("give one of --ct (a CT volume or 'phantom') and --head (a head mesh), or --builtin", ErrorKind::usage);
   }
   if (!a.ct.empty() && (!a.texture.empty() || !a.skin_landmarks.empty())) {
     throw Error("--texture and --skin-landmarks belong to --head; a CT's skin points come from its skull",
@@ -258,6 +271,8 @@ const RegisterCommand template_command{
       auto a = std::make_shared<TemplateArgs>();
       build->add_option("-o,--out", a->out, "Output folder (template.cbor, template.glb, landmarks, template.png)")
           ->required();
+      build->add_flag("--builtin", a->builtin,
+                      "Write the built-in template at --detail to a file (read quicker than it is built)");
       build->add_option("--ct", a->ct, "CT volume holding skin and skull, or 'phantom' (the built-in CT)");
       build->add_option("--head", a->head, "Head mesh (any format Assimp reads; its UVs and texture are kept)");
       build->add_option("--texture", a->texture, "Base-colour map of the head mesh (PNG or JPEG)");

@@ -19,6 +19,7 @@ struct TemplateArgs {
   int texture_size = 1024;
   int picture_size = 768;
   std::string out;
+  bool builtin = false;  ///< write the built-in template at `detail` instead
 };
 
 /// Builds the template and writes `out` (template.cbor, template.glb, landmarks, template.png, run.json); returns 0.

@@ -125,3 +125,18 @@ TEST(SlowTemplateCli, TemplateFromTheHeadsqCtTakesItsFace) {
   EXPECT_GE(facts["build"]["pairs_unscanned"].size(), 1u);
   EXPECT_LT(facts["build"]["flipped_triangles"].get<int>(), 200);
 }
+
+TEST(SlowTemplateCli, TheBuiltInTemplateThroughItsFileReconstructsTheSameHead) {
+  const auto dir = test::scratch_dir("template_slow_builtin");
+  auto r = run_cli("template build --builtin --detail coarse -o " + (dir / "t").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string common = " --texture-size 0 --picture-size 0 --expressions none -o ";
+  r = run_cli("reconstruct --ct phantom --landmarks auto --template " + (dir / "t" / "template.cbor").string() +
+              " --template-detail coarse" + common + (dir / "file").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_cli("reconstruct --ct phantom --landmarks auto --template-detail coarse" + common + (dir / "built").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The file holds the template exactly: the same landmarks, the same skin.
+  EXPECT_EQ(read_file(dir / "file" / "skin_landmarks.mrk.json"), read_file(dir / "built" / "skin_landmarks.mrk.json"));
+  EXPECT_EQ(read_file(dir / "file" / "head.obj"), read_file(dir / "built" / "head.obj"));
+}
