@@ -68,4 +68,13 @@ std::string format_count(std::size_t n) {
   return out;
 }
 
+GltfMeshNode skull_gltf_node(const std::string& name, const TriMesh& skull) {
+  GltfMeshNode node;
+  node.name = name;
+  node.mesh = skull;
+  node.mesh.material.name = "bone";
+  node.mesh.material.base_color = Vec4f(0.85f, 0.8f, 0.7f, 1.0f);
+  return node;
+}
+
 }  // namespace forensim::cli

@@ -7,6 +7,7 @@
 #include "core/types.hpp"
 #include "geometry/bounding_box.hpp"
 #include "geometry/tet_mesh.hpp"
+#include "mesh_io/gltf_writer.hpp"
 
 namespace forensim::cli {
 
@@ -28,5 +29,7 @@ std::string format_size_mm(const Vec3& size);
 std::string format_seconds(double seconds);
 /// An integer with thousands separators, "1 234 567".
 std::string format_count(std::size_t n);
+/// A skull as a glTF node named `name`, in the bone material forensim's scenes use.
+GltfMeshNode skull_gltf_node(const std::string& name, const TriMesh& skull);
 
 }  // namespace forensim::cli

@@ -585,12 +585,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     if (normal_map) head_node.textures.normal_png = encode_png(*normal_map);
   }
   scene.nodes.push_back(std::move(head_node));
-  GltfMeshNode skull_node;
-  skull_node.name = "skull";
-  skull_node.mesh = skull.mesh;
-  skull_node.mesh.material.name = "bone";
-  skull_node.mesh.material.base_color = Vec4f(0.85f, 0.8f, 0.7f, 1.0f);
-  scene.nodes.push_back(std::move(skull_node));
+  scene.nodes.push_back(skull_gltf_node("skull", skull.mesh));
   write_gltf(run.file("head.glb"), scene);
   run.add_output("head.glb");
   TriMesh obj_skin = final_skin;

@@ -165,12 +165,7 @@ int run_template_build(const TemplateArgs& a) {
   skin_node.mesh.material.name = "skin";
   if (!head.texture_png.empty()) skin_node.textures.base_color_png = head.texture_png;
   scene.nodes.push_back(std::move(skin_node));
-  GltfMeshNode skull_node;
-  skull_node.name = "template skull";
-  skull_node.mesh = head.skull;
-  skull_node.mesh.material.name = "bone";
-  skull_node.mesh.material.base_color = Vec4f(0.85f, 0.8f, 0.7f, 1.0f);
-  scene.nodes.push_back(std::move(skull_node));
+  scene.nodes.push_back(skull_gltf_node("template skull", head.skull));
   write_gltf(run.file("template.glb"), scene);
   run.add_output("template.glb");
   LandmarkSet skull_set("template skull"), skin_set("template skin");
