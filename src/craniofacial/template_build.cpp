@@ -65,7 +65,7 @@ std::optional<RayHit> skin_hit(const RayCaster& rays, const std::vector<char>& c
     auto hit = rays.intersect(skull, normal, t_min, max_t);
     if (!hit) return std::nullopt;
     if (caps.empty() || !caps[static_cast<std::size_t>(hit->triangle)]) return hit;
-    t_min = std::max(0.0, hit->t + 1e-6);
+    t_min = hit->t + 1e-6;
   }
   return std::nullopt;
 }
@@ -276,10 +276,10 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
               const bool rim = input.skin_view.bounded() && !placed_view_contains(hit->point);
               if (!cap && !rim && hit->normal.dot(n) > 0.3) {
                 best = hit;
-                best_t = std::max(hit->t, 0.0);
+                best_t = hit->t;
                 break;
               }
-              t_min = std::max(0.0, hit->t + 1e-6);
+              t_min = hit->t + 1e-6;
             }
           }
           if (best) {

@@ -83,7 +83,9 @@ std::optional<RayHit> intersect_ray(const TriMesh& mesh, const Vec3& origin, con
     RayHit hit;
     hit.triangle = static_cast<Index>(f);
     hit.barycentric = bary;
-    hit.t = t;
+    // Embree accepted the hit in float within [t_min, t_max]; the double t keeps to that range (a ray starting on
+    // the surface would otherwise report a t a rounding error below t_min).
+    hit.t = std::clamp(t, t_min, t_max);
     hit.point = bary[0] * a + bary[1] * b + bary[2] * c;
     const double n_norm = n.norm();
     hit.normal = n_norm > 0.0 ? Vec3(n / n_norm) : Vec3::Zero();
@@ -169,7 +171,9 @@ struct RayCaster::Impl {
       bary = sum > 0.0 ? Vec3(bary / sum) : Vec3(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0);
     }
     hit.barycentric = bary;
-    hit.t = t;
+    // Embree accepted the hit in float within [t_min, t_max]; the double t keeps to that range (a ray starting on
+    // the surface would otherwise report a t a rounding error below t_min).
+    hit.t = std::clamp(t, t_min, t_max);
     hit.point = bary[0] * a + bary[1] * b + bary[2] * c;
     const Vec3 n = e1.cross(e2);
     const double n_norm = n.norm();

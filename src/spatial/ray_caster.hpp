@@ -47,7 +47,8 @@ std::optional<RayHit> intersect_ray(const TriMesh& mesh, const Vec3& origin, con
 /// Setup-once, query-many ray caster. The constructor copies the mesh (positions and triangles only) and
 /// builds Embree's BVH; queries are const and thread-safe. Embree intersects in float (vertices relative to
 /// the mesh's bounding-box centre); each hit is then refined in double against the triangle Embree found,
-/// so `t`, `point` and `barycentric` agree with ray_triangle_intersect() to double rounding (except that
+/// so `t` (kept within [t_min, t_max]), `point` and `barycentric` agree with ray_triangle_intersect() to double
+/// rounding (except that
 /// barycentrics slightly outside [0, 1], for hits on an edge, are clamped onto the triangle).
 class RayCaster {
  public:

@@ -140,6 +140,32 @@ TEST(RayCaster, TRangeIsRespected) {
   EXPECT_TRUE(caster.occluded(o, d, 0.0, near->t + 0.1));
 }
 
+TEST(RayCaster, RaysFromTheSurfaceReportTInTheirRange) {
+  // Rays starting on the surface itself (a vertex moved along its normal onto the mesh it lies on): Embree accepts
+  // the hit in float, and the refinement in double must not report a t below t_min (or above t_max).
+  TriMesh mesh = make_icosphere(Vec3(40.0, -25.0, 300.0), 80.0, 4);
+  const RayCaster caster(mesh);
+  RandomStream rng(7, 0);
+  std::size_t hits = 0;
+  for (const Tri& f : mesh.triangles) {
+    const double u = rng.uniform(0.0, 1.0), v = rng.uniform(0.0, 1.0 - u);
+    const Vec3& a = mesh.positions[f[0]];
+    const Vec3& b = mesh.positions[f[1]];
+    const Vec3& c = mesh.positions[f[2]];
+    const Vec3 p = (1.0 - u - v) * a + u * b + v * c;
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    for (const double sign : {1.0, -1.0}) {
+      const double t_max = 0.5 + rng.uniform(0.0, 1.0);
+      const auto hit = caster.intersect(p, sign * n, 0.0, t_max);
+      if (!hit) continue;
+      ++hits;
+      ASSERT_GE(hit->t, 0.0);
+      ASSERT_LE(hit->t, t_max);
+    }
+  }
+  EXPECT_GT(hits, 0u);
+}
+
 TEST(RayCaster, BatchAndOccludedAgreeWithSingleQueries) {
   const TriMesh mesh = sphere_with_hole();
   const RayCaster caster(mesh);
