@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +13,7 @@
 #include "craniofacial/skull_normals.hpp"
 #include "craniofacial/skull_registration.hpp"
 #include "geometry/mesh_measures.hpp"
+#include "geometry/vertex_neighbours.hpp"
 #include "image/png_io.hpp"
 #include "mesh_processing/uv_atlas.hpp"
 #include "spatial/closest_point.hpp"
@@ -32,21 +33,15 @@ struct Rigid {
 };
 
 Rigid kabsch(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
-  Vec3 cf = Vec3::Zero(), ct = Vec3::Zero();
+  Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(from.size())), dst(3, static_cast<Eigen::Index>(to.size()));
   for (std::size_t i = 0; i < from.size(); ++i) {
-    cf += from[i];
-    ct += to[i];
+    src.col(static_cast<Eigen::Index>(i)) = from[i];
+    dst.col(static_cast<Eigen::Index>(i)) = to[i];
   }
-  cf /= static_cast<double>(from.size());
-  ct /= static_cast<double>(to.size());
-  Mat3 h = Mat3::Zero();
-  for (std::size_t i = 0; i < from.size(); ++i) h += (from[i] - cf) * (to[i] - ct).transpose();
-  const Eigen::JacobiSVD<Mat3> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Mat3 d = Mat3::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) d(2, 2) = -1.0;
+  const Eigen::Matrix4d m = Eigen::umeyama(src, dst, false);  // Umeyama 1991 without its scale: Kabsch
   Rigid r;
-  r.rotation = svd.matrixV() * d * svd.matrixU().transpose();
-  r.translation = ct - r.rotation * cf;
+  r.rotation = m.topLeftCorner<3, 3>();
+  r.translation = m.topRightCorner<3, 1>();
   return r;
 }
 
@@ -236,19 +231,14 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     return input.skin_view.contains(unplace.apply(p), sample_mm);
   };
   const std::size_t nv = warped.size();
-  std::vector<std::vector<std::size_t>> neighbours(nv);
-  for (const Tri& t : base.skin.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::size_t>(t[k]);
-      const auto b = static_cast<std::size_t>(t[(k + 1) % 3]);
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
+  const VertexNeighbours adjacency = vertex_neighbours(base.skin.triangles, nv);
+  const auto neighbour_mean = [&](const std::vector<Vec3>& values, std::size_t v) {
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t k = adjacency.start[v]; k < adjacency.start[v + 1]; ++k) {
+      sum += values[static_cast<std::size_t>(adjacency.index[k])];
     }
-  }
-  for (auto& n : neighbours) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
+    return Vec3(sum / static_cast<double>(adjacency.degree(v)));
+  };
   std::vector<Vec3> conformed = warped;
   std::vector<char> moved_flag(nv, 0);
   const auto conform_round = [&](bool last) {
@@ -294,7 +284,8 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     for (std::size_t v = 0; v < nv; ++v) {
       if (!moved_flag[v]) continue;
       std::size_t hits = 0, far = 0;
-      for (const std::size_t u : neighbours[v]) {
+      for (std::size_t k = adjacency.start[v]; k < adjacency.start[v + 1]; ++k) {
+        const auto u = static_cast<std::size_t>(adjacency.index[k]);
         if (!moved_flag[u]) continue;
         ++hits;
         if ((shift[u] - shift[v]).norm() > 3.0) ++far;
@@ -305,24 +296,24 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
       if (moved_flag[v] && !keep[v]) shift[v] = Vec3::Zero();
     }
     moved_flag = std::move(keep);
-    // Harmonic extension (Gauss-Seidel in vertex order: deterministic), then, before the last round, a light
-    // smoothing of every shift so that single stray hits do not tear the skin.
+    // Harmonic extension (Gauss-Seidel in vertex order: deterministic) until no shift changes by more than
+    // 1e-4 mm in a sweep (at most 400), then, before the last round, a light smoothing of every shift so that
+    // single stray hits do not tear the skin.
     for (int sweep = 0; sweep < 400; ++sweep) {
+      double change = 0.0;
       for (std::size_t v = 0; v < nv; ++v) {
-        if (moved_flag[v] || neighbours[v].empty()) continue;
-        Vec3 sum = Vec3::Zero();
-        for (const std::size_t u : neighbours[v]) sum += shift[u];
-        shift[v] = sum / static_cast<double>(neighbours[v].size());
+        if (moved_flag[v] || adjacency.degree(v) == 0) continue;
+        const Vec3 next = neighbour_mean(shift, v);
+        change = std::max(change, (next - shift[v]).squaredNorm());
+        shift[v] = next;
       }
+      if (change < 1e-8) break;
     }
     if (!last) {
       for (int sweep = 0; sweep < 3; ++sweep) {
         std::vector<Vec3> smoothed = shift;
         for (std::size_t v = 0; v < nv; ++v) {
-          if (neighbours[v].empty()) continue;
-          Vec3 sum = Vec3::Zero();
-          for (const std::size_t u : neighbours[v]) sum += shift[u];
-          smoothed[v] = 0.5 * shift[v] + 0.5 * sum / static_cast<double>(neighbours[v].size());
+          if (adjacency.degree(v) > 0) smoothed[v] = 0.5 * shift[v] + 0.5 * neighbour_mean(shift, v);
         }
         shift = std::move(smoothed);
       }
@@ -348,10 +339,8 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     if (flipped == 0 || round == 19) break;
     const std::vector<Vec3> before = conformed;
     for (std::size_t v = 0; v < nv; ++v) {
-      if (!fix[v] || neighbours[v].empty()) continue;
-      Vec3 sum = Vec3::Zero();
-      for (const std::size_t u : neighbours[v]) sum += before[u];
-      conformed[v] = sum / static_cast<double>(neighbours[v].size());
+      if (!fix[v] || adjacency.degree(v) == 0) continue;
+      conformed[v] = neighbour_mean(before, v);
       moved_flag[v] = 0;
     }
   }
@@ -366,6 +355,13 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
   head.skin.positions = conformed;
   head.skin.normals = vertex_normals(head.skin);
   if (head.skin.has_uvs()) head.uv_l2_stretch = uv_l2_stretch(head.skin);
+
+  // Each pair's template direction carried by the warp: which side of the bone is outward there.
+  std::vector<Vec3> carried(base.landmarks.size());
+  for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
+    const TemplateLandmarkPair& pair = base.landmarks[i];
+    carried[i] = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
+  }
 
   // The skull: the subject's, or the template's placed under the skin (its pairs then hold by construction).
   struct PlacedPair {
@@ -384,10 +380,9 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
     for (std::size_t i = 0; i < base.landmarks.size(); ++i) {
       const TemplateLandmarkPair& pair = base.landmarks[i];
       if (!input.skin_landmarks.contains(pair.skin_name)) continue;
-      const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
       const Vec3 q = on_new_skin.query(warp.evaluate(pair.skin))->point;
       skull_from.push_back(pair.skull);
-      skull_to.push_back(q - pair.depth_mm * carried);
+      skull_to.push_back(q - pair.depth_mm * carried[i]);
       placed_pair[i] = {true, skull_to.back(), q};
     }
     if (skull_from.size() >= 4) {
@@ -407,8 +402,6 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
   const SkullSurface new_skull(head.skull);
   for (std::size_t i = 0; i < head.landmarks.size(); ++i) {
     TemplateLandmarkPair& pair = head.landmarks[i];
-    // The template's direction carried by the warp: which side of the bone is outward.
-    const Vec3 carried = (warp.evaluate(pair.skull + pair.skull_normal) - warp.evaluate(pair.skull)).normalized();
     if (placed_pair[i].placed) {
       // The skull placed at this pair's own depth under its given skin point: the pair is those two points (a
       // ray along the new skull's patch normal would meet a fold of the skin elsewhere: subnasale, the lips).
@@ -416,16 +409,16 @@ TemplateBuild build_template_head(const TemplateHead& base, const TemplateBuildI
       pair.skin = placed_pair[i].skin;
       pair.depth_mm = (pair.skin - pair.skull).norm();
       const Vec3 along = pair.skin - pair.skull;
-      pair.skull_normal = along.norm() > 1e-9 ? Vec3(along / along.norm()) : carried;
+      pair.skull_normal = along.norm() > 1e-9 ? Vec3(along / along.norm()) : carried[i];
       continue;
     }
     if (measured[i].on_skull) {
       pair.skull = measured[i].skull;
-      pair.skull_normal = measuring_direction(measured[i].normal, carried);
+      pair.skull_normal = measuring_direction(measured[i].normal, carried[i]);
     } else {
       const ClosestPoint at = new_skull.closest_point(warp.evaluate(pair.skull));
       pair.skull = at.point;
-      pair.skull_normal = measuring_direction(new_skull.patch_normal(at, options.patch_radius_mm), carried);
+      pair.skull_normal = measuring_direction(new_skull.patch_normal(at, options.patch_radius_mm), carried[i]);
     }
     const auto hit = new_skin_rays.intersect(pair.skull, pair.skull_normal, 0.0, options.max_depth_mm);
     if (hit) {

@@ -5,7 +5,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "geometry/mesh_measures.hpp"
-#include "geometry/mesh_topology.hpp"
+#include "geometry/vertex_neighbours.hpp"
 
 namespace forensim {
 
@@ -14,21 +14,10 @@ void taubin_smooth(TriMesh& mesh, int iterations, double lambda, double mu) {
   require_input(std::isfinite(lambda) && lambda > 0.0, "taubin_smooth", "lambda", "must be positive");
   require_input(std::isfinite(mu) && mu < 0.0, "taubin_smooth", "mu", "must be negative");
   if (iterations == 0 || mesh.positions.empty()) return;
-  // Compressed adjacency from the unique edges.
-  const std::vector<std::array<Index, 2>> edges = unique_edges(mesh.triangles);
   const std::size_t n = mesh.positions.size();
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const auto& e : edges) {
-    ++start[std::size_t(e[0]) + 1];
-    ++start[std::size_t(e[1]) + 1];
-  }
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<Index> neighbours(start[n]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (const auto& e : edges) {
-    neighbours[fill[std::size_t(e[0])]++] = e[1];
-    neighbours[fill[std::size_t(e[1])]++] = e[0];
-  }
+  const VertexNeighbours adjacency = vertex_neighbours(mesh.triangles, n);
+  const std::vector<std::size_t>& start = adjacency.start;
+  const std::vector<Index>& neighbours = adjacency.index;
   std::vector<Vec3> next(n);
   const auto step = [&](double factor) {
     parallel_for_chunks(0, n, [&](std::size_t b, std::size_t e) {
