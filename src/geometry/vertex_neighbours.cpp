@@ -1,10 +1,15 @@
 #include "geometry/vertex_neighbours.hpp"
 
+#include "core/error.hpp"
 #include "geometry/mesh_topology.hpp"
 
 namespace forensim {
 
 VertexNeighbours vertex_neighbours(const std::vector<Tri>& triangles, std::size_t vertex_count) {
+  bool inside = true;
+  for (const Tri& t : triangles)
+    for (const Index i : t) inside = inside && i >= 0 && std::size_t(i) < vertex_count;
+  require_input(inside, "vertex_neighbours", "triangles", "hold a vertex index outside the mesh");
   const std::vector<std::array<Index, 2>> edges = unique_edges(triangles);
   VertexNeighbours out;
   out.start.assign(vertex_count + 1, 0);

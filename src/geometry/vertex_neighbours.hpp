@@ -17,7 +17,7 @@ struct VertexNeighbours {
 
 /// The neighbours of `vertex_count` vertices over the unique edges of `triangles` (unique_edges order: for each
 /// edge (a, b), a < b, sorted, b joins a's list and a joins b's), deterministic. Vertices on no triangle have none.
-/// Indices must be below vertex_count.
+/// An index outside [0, vertex_count) is refused (InputError).
 VertexNeighbours vertex_neighbours(const std::vector<Tri>& triangles, std::size_t vertex_count);
 
 }  // namespace forensim
