@@ -9,8 +9,10 @@ namespace forensim {
 /// Remeshes `mesh` towards edges of `target_edge_length_mm` by `iterations` rounds of edge splits,
 /// collapses, flips and tangential relaxation with projection onto the input (Botsch and Kobbelt 2004,
 /// CGAL::Polygon_mesh_processing::isotropic_remeshing). Borders of open meshes are first split to the
-/// target length and then kept in place (protected). The input must be a valid mesh (run repair_mesh()
-/// first on scans; non-manifold inputs are split by CGAL's orient_polygon_soup). Per-vertex and
+/// target length and then kept in place (protected). Interior vertices left with three edges (spikes on sharp
+/// features, which a simulated skin snaps through) are removed, their three triangles merged. The input must be
+/// a valid mesh (run repair_mesh() first on scans; non-manifold inputs are split by CGAL's orient_polygon_soup).
+/// Per-vertex and
 /// per-triangle attributes (UVs, colours, labels, fields) are dropped because the vertices are new;
 /// normals are recomputed and the material is kept. Throws InputError for a non-positive target length
 /// or a negative iteration count.

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -71,6 +72,35 @@ TEST(RemeshIsotropic, OpenBorderStaysInPlace) {
   EXPECT_LT(max_z_border, 1.5);
   // Protected borders leave a band of shorter edges, so the tolerance is wider than on a closed sphere.
   EXPECT_NEAR(mean_edge_length(remeshed), 0.5, 0.2 * 0.5);
+}
+
+// A vertex with three edges standing off its neighbours' triangle (a spike) is removed, its three triangles
+// merged back into one; no vertex with three edges is left and the surface stays closed and oriented.
+TEST(RemeshIsotropic, RemovesSpikesWithThreeEdges) {
+  TriMesh sphere = make_icosphere(Vec3::Zero(), 10.0, 3);
+  const std::size_t original = sphere.positions.size();
+  for (std::size_t f : {0u, 100u, 400u}) {
+    const Tri t = sphere.triangles[f];
+    const Vec3 centre = (sphere.positions[t[0]] + sphere.positions[t[1]] + sphere.positions[t[2]]) / 3.0;
+    const Index tip = static_cast<Index>(sphere.positions.size());
+    sphere.positions.push_back(1.3 * centre);  // 3 mm out
+    sphere.triangles[f] = {t[0], t[1], tip};
+    sphere.triangles.push_back({t[1], t[2], tip});
+    sphere.triangles.push_back({t[2], t[0], tip});
+  }
+  sphere.normals.clear();
+  ASSERT_TRUE(check_topology(sphere).is_closed());
+  const TriMesh cleaned = remesh_isotropic(sphere, 2.0, 0);  // no remeshing rounds: only the clean-up
+  EXPECT_EQ(cleaned.positions.size(), original);
+  std::vector<int> valence(cleaned.positions.size(), 0);
+  for (const Tri& t : cleaned.triangles)
+    for (const Index i : t) ++valence[static_cast<std::size_t>(i)];
+  EXPECT_EQ(std::count(valence.begin(), valence.end(), 3), 0);
+  double outermost = 0.0;
+  for (const Vec3& p : cleaned.positions) outermost = std::max(outermost, p.norm());
+  EXPECT_NEAR(outermost, 10.0, 1e-9);
+  const TopologyReport t = check_topology(cleaned);
+  EXPECT_TRUE(t.is_closed() && t.is_manifold() && t.is_oriented());
 }
 
 TEST(RemeshIsotropic, RejectsBadTarget) {
