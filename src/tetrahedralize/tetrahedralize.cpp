@@ -13,6 +13,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polyhedral_complex_mesh_domain_3.h>
 #include <CGAL/Random.h>
+#include <CGAL/exude_mesh_3.h>
 #include <CGAL/refine_mesh_3.h>
 
 #include <algorithm>
@@ -64,6 +65,7 @@ Polyhedron to_polyhedron(const TriMesh& mesh) {
 struct MeshPass {
   TetMesh mesh;
   double seconds = 0.0;
+  bool exude_cut_short = false;  ///< the sliver exudation reached its time bound
 };
 
 /// One Mesh_3 run with criteria for `edge` mm.
@@ -131,11 +133,10 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   const auto limits = p::mesh_3_options(p::maximal_number_of_vertices = o.max_nodes, p::pointer_to_error_code = &error);
   if (o.perturb) {
     CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(),
-                        p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg),
-                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), limits);
+                        p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), p::no_exude(), limits);
   } else {
-    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(),
-                        p::exude(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), limits);
+    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(), p::no_exude(),
+                        limits);
   }
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
     throw InputError("skin surface", "",
@@ -147,6 +148,16 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   }
 
   MeshPass pass;
+  if (error == CGAL::CGAL_MESH_3_NO_ERROR) {
+    // Exudation last, as refine_mesh_3 would run it, but bounded in time: on some inputs CGAL's exuder keeps
+    // pumping the same slivers (its queue orders equal cells by address, so whether it does changes with the
+    // process's heap; CGAL issue #8775), growing without end. A normal run takes a fraction of the
+    // refinement's time; the bound is ten times that, and at least a minute.
+    const double limit = std::max(60.0, 10.0 * watch.seconds());
+    const CGAL::Mesh_optimization_return_code code =
+        CGAL::exude_mesh_3(complex, p::time_limit = limit, p::sliver_bound = o.min_dihedral_deg);
+    pass.exude_cut_short = code == CGAL::TIME_LIMIT_REACHED;
+  }
   std::unordered_map<Triangulation::Vertex_handle, Index> node_of;
   for (auto cell = complex.cells_in_complex_begin(); cell != complex.cells_in_complex_end(); ++cell) {
     Tet tet{};
@@ -341,6 +352,11 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   }
   require_input(pass.mesh.tet_count() > 0, "skin surface", "",
                 "no tets were produced at an edge length of " + std::to_string(edge) + " mm");
+  if (pass.exude_cut_short) {
+    r.notes.emplace_back(
+        "the sliver exudation was stopped at its time bound (CGAL's exuder kept pumping the same "
+        "slivers); some slivers may remain");
+  }
   r.edge_length_mm = edge;
   r.seconds_mesh = pass.seconds;
   r.node_count = pass.mesh.vertex_count();

@@ -44,7 +44,8 @@ struct TetrahedralizeOptions {
   double facet_angle_deg = 25.0;
   /// Ask Mesh_3 for a 2-manifold boundary (refines until every boundary vertex has a disk neighbourhood).
   bool manifold_boundary = true;
-  /// Mesh_3's sliver perturbation (slower, raises the smallest dihedral angles); exudation always runs.
+  /// Mesh_3's sliver perturbation (slower, raises the smallest dihedral angles); exudation always runs, bounded
+  /// at ten times the refinement's time (at least a minute; a note says when it was cut short).
   bool perturb = true;
   /// Also close openings larger than a quarter of a surface's size (a bust's base, a limb cut off at the
   /// wrist) with a refined, faired cap; by default only scan-sized holes are filled and a surface with a large

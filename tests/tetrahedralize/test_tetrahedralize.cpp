@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <CGAL/Random.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -99,4 +101,25 @@ TEST(Tetrahedralize, BadInputsAreInputErrors) {
   TriMesh nan = skin;
   nan.positions[0].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(tetrahedralize(nan, {}, o), InputError);
+}
+
+// Same input and seed, same tets, whatever ran before in the process: CGAL's process-wide default random
+// generator (which parts of Mesh_3 and CGAL's other packages draw from) is advanced between the two runs.
+TEST(Tetrahedralize, SameSeedSameTetsAfterOtherRandomDraws) {
+  const TriMesh skin = make_icosphere(Vec3::Zero(), 20.0, 3);
+  TetrahedralizeOptions o;
+  o.edge_length_mm = 5.0;
+  o.manifold_boundary = false;
+  o.perturb = false;
+  const TetMesh first = tetrahedralize(skin, {}, o);
+  for (int i = 0; i < 1000; ++i) (void)CGAL::get_default_random().get_double();
+  // A different heap: blocks of many sizes, every other one freed.
+  std::vector<std::unique_ptr<char[]>> blocks;
+  for (int i = 0; i < 20000; ++i) blocks.emplace_back(new char[std::size_t(16 + (i * 7919) % 600)]);
+  for (std::size_t i = 0; i < blocks.size(); i += 2) blocks[i].reset();
+  const TetMesh second = tetrahedralize(skin, {}, o);
+  ASSERT_EQ(first.positions.size(), second.positions.size());
+  ASSERT_EQ(first.tets.size(), second.tets.size());
+  EXPECT_TRUE(first.positions == second.positions);
+  EXPECT_TRUE(first.tets == second.tets);
 }
