@@ -38,10 +38,6 @@ nlohmann::json report_json(const TemplateBuildReport& r) {
           {"flipped_triangles", r.flipped_triangles}, {"texture_baked", r.texture_baked}};
 }
 
-Image read_texture(const std::string& path) {
-  return read_image(path);
-}
-
 }  // namespace
 
 int run_template_build(const TemplateArgs& a) {
@@ -120,11 +116,12 @@ int run_template_build(const TemplateArgs& a) {
     ImportedMesh imported = import_mesh_with_textures(a.head, units);
     input.skin = std::move(imported.mesh);
     if (!a.texture.empty()) {
-      input.texture = read_texture(a.texture);
+      input.texture = read_image(a.texture);
     } else {
       for (const EmbeddedTexture& t : imported.textures) {
         if (t.role != "base_color") continue;
-        input.texture = t.format == "png" ? decode_png(t.bytes, a.head + " texture") : decode_jpeg(t.bytes, a.head);
+        input.texture =
+            t.format == "png" ? decode_png(t.bytes, a.head + " texture") : decode_jpeg(t.bytes, a.head + " texture");
         break;
       }
     }
