@@ -120,8 +120,7 @@ int run_template_build(const TemplateArgs& a) {
     } else {
       for (const EmbeddedTexture& t : imported.textures) {
         if (t.role != "base_color") continue;
-        input.texture =
-            t.format == "png" ? decode_png(t.bytes, a.head + " texture") : decode_jpeg(t.bytes, a.head + " texture");
+        input.texture = decode_image(t.bytes, a.head + " texture");
         break;
       }
     }

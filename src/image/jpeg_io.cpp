@@ -48,12 +48,33 @@ Image read_jpeg(const std::filesystem::path& path, bool linear_colour) {
   return decode_jpeg(read_file(path), path.string(), linear_colour);
 }
 
+namespace {
+
+unsigned byte_at(std::string_view bytes, std::size_t i) {
+  return i < bytes.size() ? static_cast<unsigned char>(bytes[i]) : 0u;
+}
+
+bool is_png(std::string_view b) {
+  return byte_at(b, 0) == 0x89 && byte_at(b, 1) == 'P' && byte_at(b, 2) == 'N' && byte_at(b, 3) == 'G';
+}
+
+bool is_jpeg(std::string_view b) {
+  return byte_at(b, 0) == 0xFF && byte_at(b, 1) == 0xD8;
+}
+
+}  // namespace
+
+Image decode_image(std::string_view bytes, const std::string& source) {
+  if (is_png(bytes)) return decode_png(bytes, source);
+  if (is_jpeg(bytes)) return decode_jpeg(bytes, source);
+  throw InputError(source, "byte 0", "is not a PNG or JPEG image");
+}
+
 Image read_image(const std::filesystem::path& path) {
   const std::string bytes = read_file(path);
-  const auto byte = [&](std::size_t i) { return i < bytes.size() ? static_cast<unsigned char>(bytes[i]) : 0u; };
-  if (byte(0) == 0x89 && byte(1) == 'P' && byte(2) == 'N' && byte(3) == 'G') return decode_png(bytes, path.string());
-  if (byte(0) == 0xFF && byte(1) == 0xD8) return decode_jpeg(bytes, path.string());
-  if (byte(0) == 0x76 && byte(1) == 0x2F && byte(2) == 0x31 && byte(3) == 0x01) return read_exr(path);
+  if (is_png(bytes) || is_jpeg(bytes)) return decode_image(bytes, path.string());
+  if (byte_at(bytes, 0) == 0x76 && byte_at(bytes, 1) == 0x2F && byte_at(bytes, 2) == 0x31 && byte_at(bytes, 3) == 0x01)
+    return read_exr(path);
   throw InputError(path.string(), "byte 0", "is not a PNG, JPEG or OpenEXR image");
 }
 

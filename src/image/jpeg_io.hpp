@@ -19,6 +19,9 @@ Image decode_jpeg(std::string_view bytes, const std::string& source = "JPEG data
 /// decode_jpeg on a file. Throws IoError when it cannot be read.
 Image read_jpeg(const std::filesystem::path& path, bool linear_colour = true);
 
+/// Decodes PNG or JPEG bytes, chosen by their first bytes (an embedded texture of a glTF): colour decoded to
+/// linear light. `source` names the bytes in errors. Throws InputError for other data.
+Image decode_image(std::string_view bytes, const std::string& source);
 /// Reads a PNG, JPEG or OpenEXR file, chosen by its first bytes (not its name): colour PNG and JPEG are
 /// decoded to linear light, EXR is linear already. Throws InputError for other formats, naming the file.
 Image read_image(const std::filesystem::path& path);

@@ -7,6 +7,7 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #pragma GCC diagnostic pop
 
+#include <array>
 #include <boost/iterator/function_output_iterator.hpp>
 #include <cmath>
 #include <vector>
@@ -24,34 +25,30 @@ namespace {
 /// Removes interior vertices with three edges (CGAL::Euler::remove_center_vertex: their three triangles become
 /// one). Isotropic remeshing leaves a few on sharp features, often as spikes standing off their neighbours'
 /// triangle; held only by bending, they snap through it under a simulated skin's compression. Passes repeat while
-/// a removal leaves a new one; a vertex next to another of three edges, or one whose fan closes a tetrahedron, is
-/// kept. Returns how many were removed.
-std::size_t remove_valence_three_vertices(cgal::SurfaceMesh& sm) {
-  std::size_t removed = 0;
+/// a removal leaves a new one; a vertex next to another of three edges, or one whose fan closes a tetrahedron (the
+/// same face across all three rims), is kept.
+void remove_valence_three_vertices(cgal::SurfaceMesh& sm) {
+  using Face = cgal::SurfaceMesh::Face_index;
   for (int pass = 0; pass < 8; ++pass) {
-    std::size_t this_pass = 0;
+    bool removed = false;
     for (const auto v : sm.vertices()) {
-      if (sm.is_removed(v) || sm.is_border(v) || sm.degree(v) != 3) continue;
+      if (sm.is_border(v) || sm.degree(v) != 3) continue;
       const auto h = sm.halfedge(v);  // a halfedge pointing to v
       bool keep = false;
-      std::vector<cgal::SurfaceMesh::Face_index> outer;
+      std::array<Face, 3> across{};
+      int k = 0;
       for (const auto g : CGAL::halfedges_around_target(h, sm)) {
-        const auto neighbour = sm.source(g);
-        if (sm.degree(neighbour) <= 3) keep = true;
-        // The fan's outer edge opposite v in the face of g, and the face across it.
-        const auto rim = sm.next(g);
-        const auto across = sm.face(sm.opposite(rim));
-        if (across == cgal::SurfaceMesh::null_face()) keep = true;
-        outer.push_back(across);
+        // The face across the fan's rim edge (opposite v in g's face).
+        across[static_cast<std::size_t>(k++)] = sm.face(sm.opposite(sm.next(g)));
+        keep = keep || sm.degree(sm.source(g)) <= 3;
       }
-      if (keep || outer.size() != 3 || outer[0] == outer[1] || outer[1] == outer[2] || outer[0] == outer[2]) continue;
+      keep = keep || across[0] == across[1] || across[1] == across[2] || across[0] == across[2];
+      if (keep) continue;
       CGAL::Euler::remove_center_vertex(h, sm);
-      ++this_pass;
+      removed = true;
     }
-    removed += this_pass;
-    if (this_pass == 0) break;
+    if (!removed) break;
   }
-  return removed;
 }
 
 }  // namespace

@@ -12,10 +12,9 @@ namespace forensim {
 /// target length and then kept in place (protected). Interior vertices left with three edges (spikes on sharp
 /// features, which a simulated skin snaps through) are removed, their three triangles merged. The input must be
 /// a valid mesh (run repair_mesh() first on scans; non-manifold inputs are split by CGAL's orient_polygon_soup).
-/// Per-vertex and
-/// per-triangle attributes (UVs, colours, labels, fields) are dropped because the vertices are new;
-/// normals are recomputed and the material is kept. Throws InputError for a non-positive target length
-/// or a negative iteration count.
+/// Per-vertex and per-triangle attributes (UVs, colours, labels, fields) are dropped because the vertices are
+/// new; normals are recomputed and the material is kept. Throws InputError for a non-positive target length or a
+/// negative iteration count.
 TriMesh remesh_isotropic(const TriMesh& mesh, double target_edge_length_mm, int iterations = 3);
 
 /// remesh_isotropic() to about `triangles` triangles: an equilateral triangle of edge L covers sqrt(3)/4 L^2, so L

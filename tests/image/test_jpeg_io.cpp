@@ -79,6 +79,19 @@ TEST(Jpeg, ReadImageChoosesTheDecoderByContent) {
   EXPECT_THROW(read_image(dir / "text.jpg"), InputError);
 }
 
+// Bytes in memory (a glTF's embedded texture): the decoder is chosen by content, and other data is refused
+// naming its source.
+TEST(Jpeg, DecodeImageChoosesTheDecoderByContent) {
+  EXPECT_EQ(decode_image(gradient_jpeg(8, 4), "embedded").height(), 4);
+  EXPECT_EQ(decode_image(encode_png(Image(5, 3, 3, 0.5f)), "embedded").width(), 5);
+  try {
+    decode_image("GIF89a", "head.glb texture");
+    FAIL() << "GIF bytes were decoded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("head.glb texture"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Jpeg, ReadsAScannedHeadsColourMap) {
   FORENSIM_REQUIRE_DATA(path, "head-scan-lee-perry-smith/Map-COL.jpg");
   const Image map = read_jpeg(path);
