@@ -8,6 +8,7 @@
 #include <map>
 
 #include "commands.hpp"
+#include "core/crash_report.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/parallel.hpp"
@@ -29,6 +30,7 @@ RegisterCommand::RegisterCommand(std::string name, std::function<std::function<i
 
 int main(int argc, char** argv) {
   using namespace forensim;
+  install_crash_handler("forensim");
   CLI::App app{
       "forensim: simulates how a body's appearance changes after injury and after death (desiccation,\n"
       "wound healing) and rebuilds a face from a skull (craniofacial reconstruction)."};
@@ -68,7 +70,10 @@ int main(int argc, char** argv) {
     install_interrupt_handler();
     for (CLI::App* sub : app.get_subcommands()) {
       auto it = runners.find(sub);
-      if (it != runners.end()) return it->second();
+      if (it != runners.end()) {
+        const CrashActivity activity("forensim " + sub->get_name());
+        return it->second();
+      }
     }
     std::fprintf(stderr, "forensim: error: no subcommand given (see forensim --help)\n");
     return static_cast<int>(ErrorKind::usage);
