@@ -26,6 +26,7 @@
 #include "craniofacial/skull_completion.hpp"
 #include "craniofacial/skull_guides.hpp"
 #include "craniofacial/skull_input.hpp"
+#include "craniofacial/template_carry.hpp"
 #include "craniofacial/template_file.hpp"
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
@@ -53,6 +54,7 @@ struct ReconstructArgs {
   std::string guides_file;
   std::string out;
   bool no_interpolated = false;
+  bool no_carry = false;
   bool evaluate = false;
   bool measure_guides = false;
   std::string expressions;  ///< --expressions: comma-separated presets, or "none"
@@ -109,6 +111,7 @@ int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
   if (typed("--uncertainty")) job.uncertainty_samples = cli_job.uncertainty_samples;
   if (typed("--expressions")) job.expressions = parse_expression_list(a.expressions, "--expressions");
   if (a.no_interpolated) job.interpolated_landmarks = false;
+  if (a.no_carry) job.carry_template = false;
   if (a.evaluate) job.evaluate = true;
   if (a.measure_guides) job.measure_guides = true;
   nlohmann::json guides_record = nullptr;
@@ -220,6 +223,7 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   };
   std::optional<LandmarkDetection> detection;
   std::optional<SkullCompletion> completion;
+  bool registered_skull_is_fitted = true;  // the detection's registration maps the fitted template's skull
   // Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
   // scan did not see lie on the registered template, whose missing part completes the skull.
   double detection_s = 0.0;  // with the skull's completion
@@ -261,6 +265,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
         },
         1);
     detect(reference);
+    // The file's template is carried by that registration only when its skull is the reference's (a built-in
+    // template written by template build --builtin); a skull of its own would need a registration of its own.
+    registered_skull_is_fitted =
+        reference.skull.positions == head.skull.positions && reference.skull.triangles == head.skull.triangles;
   } else if (landmark_mode == "auto") {
     // Detection needs only the template's skull and its landmarks: it runs while the template's skin, atlas and
     // muscles are built, and the halves are joined after.
@@ -319,7 +327,15 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     for (const std::string& why : m.missing) line += "; not " + why;
     std::printf("%s\n", line.c_str());
   }
-  Reconstruction reconstruction(head, skull.mesh, skull_landmarks_in, depths, options);
+  // The template carried onto the skull by the registration that found the landmarks (template_carry.hpp), so the
+  // warp of eq. 1 sets the tissue depths on a head that already lies on this skull.
+  std::optional<TemplateHead> carried;
+  if (job.carry_template && detection && registered_skull_is_fitted) {
+    carried = carry_template_head(head, detection->registration);
+    timings.add("template carried onto the skull", watch.lap());
+  }
+  const TemplateHead& fitted_head = carried ? *carried : head;
+  Reconstruction reconstruction(fitted_head, skull.mesh, skull_landmarks_in, depths, options);
   const ReconstructionResult& result = reconstruction.result();
   const TemplateFitResult& fit = reconstruction.fit();
   const DepthVectors& vectors = result.depth_vectors;
@@ -499,7 +515,8 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   nlohmann::json provenance;
   provenance["template"] = {
       {"name", template_from_file ? job.template_file : "built-in head phantom template"},
-      {"source", head.source},
+      {"source", fitted_head.source},
+      {"carried_onto_skull", carried.has_value()},
       {"detail", template_from_file ? "file" : job.template_detail},
       {"landmark_reference", template_from_file && detection ? "built-in template skull (" + job.template_detail + ")"
                                                              : std::string("the template's skull")},
@@ -684,6 +701,9 @@ const RegisterCommand reconstruct_command{
       sub->add_option("--guides", a->guides_file, "Nose and mouth guide values (JSON, FaceGuides fields)");
       sub->add_flag("--no-interpolated", a->no_interpolated,
                     "Leave out the interpolated cranium and mandible landmarks");
+      sub->add_flag("--no-carry", a->no_carry,
+                    "With automatic landmarks, warp the template as it is (the paper's fit) instead of first "
+                    "carrying it onto the skull by the registration that found them");
       sub->add_flag("--measure-guides", a->measure_guides,
                     "Measure the nose and mouth guides on the skull (aperture, nasal spine, mouth corners); "
                     "--guides values override them");

@@ -52,6 +52,7 @@ ReconstructJob read_reconstruct_job(const JobNode& root, const ReconstructJob& d
     j.has_guides = any_guide(j.guides);
   }
   j.interpolated_landmarks = root.get<bool>("interpolated_landmarks", defaults.interpolated_landmarks);
+  j.carry_template = root.get<bool>("carry_template", defaults.carry_template);
   j.evaluate = root.get<bool>("evaluate", defaults.evaluate);
   j.measure_guides = root.get<bool>("measure_guides", defaults.measure_guides);
   j.template_detail = root.get_choice("template_detail", defaults.template_detail, {"full", "coarse"});
@@ -121,6 +122,7 @@ nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json 
   resolved["build"] = job.build;
   resolved["build_sd"] = job.build_sd;
   resolved["interpolated_landmarks"] = job.interpolated_landmarks;
+  resolved["carry_template"] = job.carry_template;
   resolved["evaluate"] = job.evaluate;
   resolved["measure_guides"] = job.measure_guides;
   resolved["template_detail"] = job.template_detail;

@@ -21,6 +21,11 @@
 ///   build_sd         k of the build variants (default 1)
 ///   guides           nose and mouth guide values (face_guides.hpp), an object with the FaceGuides fields
 ///   interpolated_landmarks  true (default): add cranium and mandible pairs (paper Figure 6b)
+///   carry_template   true (default): with automatic landmarks, the template head is first carried onto the skull
+///                    by the registration of its skull that found them (template_carry.hpp), then warped by its
+///                    landmark pairs; false: the template as it is, warped by its pairs alone (the paper's fit).
+///                    A template file is carried only when its skull is the built-in one the landmarks were found
+///                    with (template build --builtin)
 ///   template_detail  "full" (default) or "coarse" (a quicker, coarser template)
 ///   template         a template file (forensim template build; template_file.hpp) instead of the built-in
 ///                    template: its skin, skull, landmark pairs, muscles and texture (automatic landmarks are
@@ -71,6 +76,7 @@ struct ReconstructJob {
   FaceGuides guides;
   bool has_guides = false;
   bool interpolated_landmarks = true;
+  bool carry_template = true;
   std::string template_detail = "full";
   std::string template_file;  ///< empty: the built-in template at template_detail
   std::string axes = "auto";

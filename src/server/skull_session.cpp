@@ -13,6 +13,7 @@
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
 #include "craniofacial/skull_skin_violations.hpp"
+#include "craniofacial/template_carry.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "mesh_io/gltf_writer.hpp"
@@ -90,6 +91,10 @@ SkullSession::SkullSession(std::string id, std::shared_ptr<const TemplateHead> h
     nlohmann::json left_out = nlohmann::json::array();
     for (const auto& [name, reason] : detection.left_out) left_out.push_back({{"name", name}, {"reason", reason}});
     m_detection["left_out"] = left_out;
+    // The template carried onto the skull by the registration before the warp (template_carry.hpp), as forensim
+    // reconstruct does with automatic landmarks.
+    m_fitted_head = std::make_shared<const TemplateHead>(carry_template_head(*m_head, detection.registration));
+    m_detection["template_carried"] = true;
     m_timings_ms["detection"] = ms(watch.lap());
   } else {
     landmarks = as_bad_request("/landmarks", [&] { return read_landmarks(request.landmarks); });
@@ -100,7 +105,8 @@ SkullSession::SkullSession(std::string id, std::shared_ptr<const TemplateHead> h
   options.fit.count_violations = false;
   options.guides = request.guides;
   m_reconstruction = as_bad_request("/landmarks", [&] {
-    return std::make_unique<Reconstruction>(*m_head, m_skull.mesh, landmarks, depths, options);
+    return std::make_unique<Reconstruction>(m_fitted_head ? *m_fitted_head : *m_head, m_skull.mesh, landmarks, depths,
+                                            options);
   });
   m_timings_ms["reconstruction"] = ms(watch.lap());
   touch();  // idle from when the session is ready, not from when its building began

@@ -103,6 +103,8 @@ class SkullSession {
 
   std::string m_id;
   std::shared_ptr<const TemplateHead> m_head;
+  /// The template carried onto the skull by the registration of detected landmarks (null: m_head is fitted).
+  std::shared_ptr<const TemplateHead> m_fitted_head;
   SkullSessionRequest m_request;
   Skull m_skull;
   std::string m_landmark_origin;

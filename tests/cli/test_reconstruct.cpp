@@ -177,6 +177,7 @@ TEST(ReconstructCli, RunRecordHoldsTheFlagsAndReadsBackToTheSameJob) {
   job.evaluate = true;
   job.measure_guides = true;
   job.interpolated_landmarks = false;
+  job.carry_template = false;
   job.ct = "scan.nhdr";
   job.seed = 9;
   job.expressions = {"smile"};
@@ -185,6 +186,7 @@ TEST(ReconstructCli, RunRecordHoldsTheFlagsAndReadsBackToTheSameJob) {
   EXPECT_TRUE(record["evaluate"].get<bool>());
   EXPECT_TRUE(record["measure_guides"].get<bool>());
   EXPECT_FALSE(record["interpolated_landmarks"].get<bool>());
+  EXPECT_FALSE(record["carry_template"].get<bool>());
   EXPECT_EQ(record["table"], "rhine_1983");
   EXPECT_EQ(record["seed"].get<int>(), 9);
   // The record is a valid job that reads back to the job that ran, every key used.
@@ -194,6 +196,7 @@ TEST(ReconstructCli, RunRecordHoldsTheFlagsAndReadsBackToTheSameJob) {
   EXPECT_TRUE(back.evaluate);
   EXPECT_TRUE(back.measure_guides);
   EXPECT_FALSE(back.interpolated_landmarks);
+  EXPECT_FALSE(back.carry_template);
   EXPECT_EQ(back.ct, "scan.nhdr");
   EXPECT_EQ(back.table, "rhine_1983");
   EXPECT_EQ(back.seed, 9u);
