@@ -115,7 +115,7 @@ std::vector<std::string> TemplateFit::kept_interpolated_names(const Interpolated
   return kept;
 }
 
-void TemplateFit::factor(const InterpolatedLandmarks& s, bool count_violations) {
+void TemplateFit::factor(const InterpolatedLandmarks& s, bool count_violations, bool shape_muscles_now) {
   // The pair set: the given pairs, then every template interpolated point also found on the target.
   const std::size_t given = m_result.given_pair_count;
   m_result.pair_names.resize(given);
@@ -148,12 +148,19 @@ void TemplateFit::factor(const InterpolatedLandmarks& s, bool count_violations) 
   }
   Stopwatch setup;
   m_warp = std::make_unique<RbfWarp>(m_result.sources, m_result.targets, "landmark pairs");
-  m_point_warp = std::make_unique<RbfPointWarp>(*m_warp, m_points);
+  // The cardinal functions of the points (#points x #pairs) are made when a landmark first moves (point_warp()): a
+  // correction round needs only the warped points, one evaluation of eq. 1 each.
+  m_point_warp.reset();
   m_result.seconds_setup = setup.seconds();
-  m_warped = m_point_warp->warp(m_result.targets);
-  apply_positions();
+  m_warped = m_warp->evaluate_batch(m_points);
+  apply_positions(shape_muscles_now);
   m_result.max_landmark_residual_mm = m_warp->max_landmark_residual();
   if (count_violations) recount_violations();
+}
+
+const RbfPointWarp& TemplateFit::point_warp() {
+  if (!m_point_warp) m_point_warp = std::make_unique<RbfPointWarp>(*m_warp, m_points);
+  return *m_point_warp;
 }
 
 void TemplateFit::update_correction_depths() {
@@ -186,23 +193,25 @@ std::size_t TemplateFit::correct_violations() {
     c.depth_mm.insert(c.depth_mm.end(), more.depth_mm.begin(), more.depth_mm.end());
     added += more.sources.size();
     ++m_result.correction_rounds;
-    // factor() rebuilds the interpolated record from its argument: pass a copy.
+    // factor() rebuilds the interpolated record from its argument: pass a copy. The rounds count the skin only;
+    // the muscles are shaped once, under the final skin.
     const InterpolatedLandmarks kept = m_result.interpolated;
-    factor(kept, false);
+    factor(kept, false, false);
     v = m_counter->count(m_result.skin);
   }
+  if (added > 0) apply_positions();
   m_result.violations = v;
   return added;
 }
 
 TemplateFit::~TemplateFit() = default;
 
-void TemplateFit::apply_positions() {
+void TemplateFit::apply_positions(bool shape_muscles_now) {
   m_result.skin = with_positions(m_head.skin, m_warped, 0);
   std::size_t offset = m_head.skin.positions.size();
   m_result.skin_landmarks = m_head.skin_landmarks;
   for (TemplateSkinLandmark& l : m_result.skin_landmarks) l.position = m_warped[offset++];
-  if (!m_options.muscles) return;
+  if (!m_options.muscles || !shape_muscles_now) return;
   m_result.muscle_layouts = m_head.muscles;
   for (MuscleLayout& m : m_result.muscle_layouts) {
     for (Vec3& p : m.grid) p = m_warped[offset++];
@@ -310,9 +319,10 @@ std::size_t TemplateFit::retarget_with(const InterpolatedLandmarks& s) {
   }
   // Few changes: add each one's cardinal function; many (the cranium frame moved): one product.
   if (changed.size() * 4 < targets.size()) {
-    for (const std::size_t j : changed) m_point_warp->move_target(j, targets[j] - m_result.targets[j], m_warped);
+    const RbfPointWarp& cardinal = point_warp();
+    for (const std::size_t j : changed) cardinal.move_target(j, targets[j] - m_result.targets[j], m_warped);
   } else {
-    m_warped = m_point_warp->warp(targets);
+    m_warped = point_warp().warp(targets);
   }
   for (const std::size_t j : changed) m_warp->set_target(j, targets[j]);
   m_result.targets = targets;

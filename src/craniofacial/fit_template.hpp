@@ -9,8 +9,9 @@
 /// skin (or the skin enters the skull) after them, correction pairs are added at the violations and the warp
 /// solved again, round after round until none remain (violation_correction.hpp).
 ///
-/// TemplateFit keeps the factorised warp and the cardinal functions of the template's points, so moving one
-/// landmark (the interactive case) re-targets the warp and moves the head in O(#points) per changed pair.
+/// TemplateFit keeps the factorised warp and, from the first landmark move on, the cardinal functions of the
+/// template's points, so moving one landmark (the interactive case) re-targets the warp and moves the head in
+/// O(#points) per changed pair.
 
 #include <memory>
 #include <string>
@@ -111,11 +112,15 @@ class TemplateFit {
   /// The template's interpolated points that `s` also holds, in the template's order.
   std::vector<std::string> kept_interpolated_names(const InterpolatedLandmarks& s) const;
   /// Builds the pair set from the given landmarks, `s` and the correction pairs, factors the warp and warps
-  /// every point.
-  void factor(const InterpolatedLandmarks& s, bool count_violations);
+  /// every point (the muscles shaped under the new skin unless `shape_muscles_now` is false).
+  void factor(const InterpolatedLandmarks& s, bool count_violations, bool shape_muscles_now = true);
+  /// The cardinal functions of the points for the current pair set, made on first use after a factorisation.
+  const RbfPointWarp& point_warp();
   /// Targets of the correction pairs from the current given depth vectors.
   void update_correction_depths();
-  void apply_positions();
+  /// Skin, skin-only landmarks and muscle grids from m_warped; the muscles shaped under the skin when
+  /// `shape_muscles_now`.
+  void apply_positions(bool shape_muscles_now = true);
   /// Targets from the current given landmarks; skin and muscles updated (refactored if the pair set changed).
   /// `regenerate` (k_cranium, k_mandible or both): the interpolated generators run again on the target; the
   /// others' points are kept (the moved landmarks do not feed them).
@@ -139,7 +144,7 @@ class TemplateFit {
   std::vector<std::string> m_interpolated_names;           ///< the pairs kept (found on both skulls)
   std::vector<Vec3> m_points;                              ///< skin vertices, skin-only landmarks, muscle grids
   std::unique_ptr<RbfWarp> m_warp;
-  std::unique_ptr<RbfPointWarp> m_point_warp;  ///< cardinal functions at m_points
+  std::unique_ptr<RbfPointWarp> m_point_warp;  ///< cardinal functions at m_points (null until needed)
   std::vector<Vec3> m_warped;
   TemplateFitResult m_result;
 };
