@@ -76,6 +76,12 @@ void on_fatal_signal(int sig) {
 }  // namespace
 
 void install_crash_handler(const char* program) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer reports fatal signals itself, with the faulting address and a symbolised stack: its handler
+  // stays.
+  static_cast<void>(program);
+  return;
+#endif
   if (g_installed.exchange(true)) return;
   g_program = program;
   // backtrace() loads libgcc on its first call, which allocates: do it now, not in the handler.

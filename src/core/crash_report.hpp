@@ -11,7 +11,8 @@
 namespace forensim {
 
 /// Installs the handler for SIGSEGV, SIGBUS, SIGILL, SIGFPE and SIGABRT. `program` names the program in
-/// the report ("forensim"). Installing twice is harmless.
+/// the report ("forensim"). Installing twice is harmless. Under AddressSanitizer it does nothing (the
+/// sanitizer's own report of a fatal signal says more).
 void install_crash_handler(const char* program);
 
 /// Names what the process is doing, for the crash report, while it lives ("demo stage 'template'");

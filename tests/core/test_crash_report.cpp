@@ -27,6 +27,8 @@ TEST(CrashActivity, LongTextsAreCut) {
   EXPECT_EQ(current_crash_activity(), std::string(255, 'x'));
 }
 
+// The handler itself (under AddressSanitizer it is not installed: the sanitizer reports fatal signals itself).
+#if !defined(__SANITIZE_ADDRESS__)
 namespace {
 
 [[noreturn]] void crash_in(const char* activity, int sig) {
@@ -59,8 +61,6 @@ TEST(CrashReportDeathTest, NamesTheSignalTheActivityAndPrintsATrace) {
   EXPECT_EXIT(crash_in("reading", SIGFPE), testing::KilledBySignal(SIGFPE), "floating-point exception.*reading");
 }
 
-#if !defined(__SANITIZE_ADDRESS__)
-// (AddressSanitizer reports stack overflows itself, from its own handler.)
 TEST(CrashReportDeathTest, ReportsAStackOverflowFromItsOwnStack) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_EXIT(
