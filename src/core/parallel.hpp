@@ -2,6 +2,10 @@
 /// Parallel loops on oneTBB. Reductions are deterministic: the range is cut into fixed blocks that do not
 /// depend on the thread count and block results are combined in order, so sums are bitwise identical at
 /// any thread count.
+///
+/// Every loop runs in an isolated TBB context: an exception in one loop ends that loop (rethrown from the call)
+/// and never cancels a loop running elsewhere, so a loop returns either with every iteration done or by
+/// throwing, never with iterations silently skipped.
 
 #include <cstddef>
 #include <functional>
@@ -18,8 +22,8 @@ int thread_count();
 void parallel_for(std::size_t begin, std::size_t end, const std::function<void(std::size_t)>& body,
                   std::size_t grain = 256);
 
-/// Calls first() and second() side by side (two independent pieces of work), returning when both are done. An
-/// exception thrown by either is rethrown here.
+/// Calls first() and second() side by side (two independent pieces of work), returning when both are done. Both
+/// run to the end even when the other throws; then first()'s exception is rethrown here, else second()'s.
 void parallel_invoke(const std::function<void()>& first, const std::function<void()>& second);
 
 /// Calls body(chunk_begin, chunk_end) over [begin, end) cut into chunks of at most `grain`.

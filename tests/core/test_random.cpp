@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -86,6 +87,48 @@ TEST(Parallel, InvokeRunsBothAndRethrows) {
     parallel_invoke([&] { a = 1; }, [&] { b = 2; });
     EXPECT_EQ(a + b, 3) << threads << " threads";
     EXPECT_THROW(parallel_invoke([] {}, [] { throw std::runtime_error("second"); }), std::runtime_error);
+  }
+  set_thread_count(0);
+}
+
+// A branch that throws must not cancel the loops of the other branch: with TBB's bound contexts the sibling's
+// nested loop returned early with iterations skipped and the sibling went on with half-filled data.
+TEST(Parallel, ThrowingBranchLeavesTheSiblingsLoopsWhole) {
+  for (int threads : {1, 2, 4}) {
+    set_thread_count(threads);
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<int> visits(200000, 0);
+      double sum = 0.0;
+      const auto throws = [] { throw std::runtime_error("reader failed"); };
+      const auto sibling = [&] {
+        parallel_for(
+            0, visits.size(), [&](std::size_t i) { visits[i] += 1; }, 64);
+        sum = parallel_sum(
+            0, 100000, [](std::size_t) { return 1.0; }, 100);
+      };
+      // The failing branch in either position; its exception comes out, the sibling's work is complete.
+      EXPECT_THROW(parallel_invoke(throws, sibling), std::runtime_error);
+      EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), static_cast<long>(visits.size())) << threads;
+      EXPECT_EQ(sum, 100000.0) << threads;
+      std::fill(visits.begin(), visits.end(), 0);
+      sum = 0.0;
+      EXPECT_THROW(parallel_invoke(sibling, throws), std::runtime_error);
+      EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), static_cast<long>(visits.size())) << threads;
+      EXPECT_EQ(sum, 100000.0) << threads;
+    }
+  }
+  set_thread_count(0);
+}
+
+TEST(Parallel, InvokeRethrowsTheFirstBranchsErrorWhenBothThrow) {
+  set_thread_count(2);
+  for (int trial = 0; trial < 20; ++trial) {
+    try {
+      parallel_invoke([] { throw std::runtime_error("first"); }, [] { throw std::logic_error("second"); });
+      FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "first");
+    }
   }
   set_thread_count(0);
 }
