@@ -182,3 +182,26 @@ TEST(Cli, TetrahedralizeRejectsBadInputWithoutWriting) {
   EXPECT_EQ(size.exit_code, 3) << size.output;
   EXPECT_NE(size.output.find("huge"), std::string::npos) << size.output;
 }
+
+// A demo stage that fails (here on a corrupt CT in the data folder) is marked failed in the report and the run
+// record, the other stages still run, and the demo exits with the stage's error code naming it.
+TEST(Cli, DemoReportsAFailedStageRunsTheRestAndExitsNonZero) {
+  const auto dir = test::scratch_dir("cli_demo_fail");
+  const auto data = dir / "data";
+  std::filesystem::create_directories(data / "ct-head-headsq");
+  write_file_atomic(data / "ct-head-headsq" / "quarter.nhdr", std::string("NRRD0004\ngarbage\n"));
+  const auto out = dir / "out";
+  const auto result = run_cli("demo --data " + data.string() + " -o " + out.string() +
+                              " --only 'real CT,phantom forearm-uv' --picture-size 96 --samples 1 --uv-resolution 128");
+  EXPECT_EQ(result.exit_code, 3) << result.output;
+  EXPECT_NE(result.output.find("1 of 2 stages failed: 'real CT'"), std::string::npos) << result.output;
+  const std::string html = read_file(out / "report.html");
+  EXPECT_NE(html.find("1 of 2 stages FAILED"), std::string::npos);
+  EXPECT_NE(html.find("quarter.nhdr"), std::string::npos);
+  const auto record = nlohmann::json::parse(read_file(out / "run.json"));
+  ASSERT_EQ(record["facts"]["stages"]["failed"].size(), 1u);
+  EXPECT_EQ(record["facts"]["stages"]["failed"][0]["stage"], "real CT");
+  // The stage after the failed one ran.
+  EXPECT_TRUE(record["facts"]["forearm_uv"]["overlap_free"].get<bool>());
+  EXPECT_EQ(run_cli("demo --only 'no such stage' -o " + (dir / "x").string()).exit_code, 2);
+}
