@@ -688,10 +688,10 @@ void append_field_data(std::string& out, const FieldSet& fields, bool on_nodes, 
     out += std::string(section) + "\n";
   };
   for (const auto& [name, values] : fields.scalars) {
-    write(name, values.size(), 1, [&values](std::size_t i, int) { return values[i]; });
+    write(name, values.size(), 1, [&v = values](std::size_t i, int) { return v[i]; });
   }
   for (const auto& [name, values] : fields.vectors) {
-    write(name, values.size(), 3, [&values](std::size_t i, int k) { return values[i][k]; });
+    write(name, values.size(), 3, [&v = values](std::size_t i, int k) { return v[i][k]; });
   }
 }
 

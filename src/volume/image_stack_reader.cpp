@@ -27,7 +27,9 @@ struct Slice {
 // libtiff reports through handlers; keep the last message for the InputError.
 thread_local std::string t_tiff_message;
 
-int tiff_error_handler(TIFF*, void*, const char* module, const char* fmt, va_list ap) {
+// The format attribute tells the compiler that `fmt` is libtiff's printf format (clang's -Wformat-nonliteral).
+__attribute__((format(printf, 4, 0))) int tiff_error_handler(TIFF*, void*, const char* module, const char* fmt,
+                                                             va_list ap) {
   char buffer[512];
   std::vsnprintf(buffer, sizeof(buffer), fmt, ap);
   t_tiff_message = std::string(module != nullptr ? module : "libtiff") + ": " + buffer;
