@@ -89,6 +89,9 @@ JobDocument JobDocument::parse(const std::string& text, const std::string& sourc
     throw JobError(
         source, "",
         "JSON syntax error at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double's range ("1e999") fails as out_of_range, not as a parse_error.
+    throw JobError(source, "", std::string("JSON value out of range: ") + e.what());
   }
   if (!doc.m_state->json.is_object()) {
     throw JobError(source, "", std::string("a job must be a JSON object, got ") + doc.m_state->json.type_name());

@@ -57,6 +57,8 @@ nlohmann::json JobManager::start(const std::string& text) {
     body = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw ApiError(400, "request body is not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    throw ApiError(400, std::string("request body is not valid JSON: ") + e.what());
   }
   if (!body.is_object()) throw ApiError(400, "request body must be a JSON object");
   JobDocument doc = JobDocument::parse(text, "request");

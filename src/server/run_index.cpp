@@ -21,6 +21,8 @@ nlohmann::json parse_json_file(const fs::path& path) {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path.string(), "byte " + std::to_string(e.byte), "is not valid JSON");
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    throw InputError(path.string(), "", std::string("is not valid JSON: ") + e.what());
   }
 }
 

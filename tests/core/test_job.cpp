@@ -51,6 +51,16 @@ TEST(Job, WrongTypeAndRangeAreErrors) {
   EXPECT_THROW((void)doc.root().require<int>("missing"), JobError);
 }
 
+TEST(Job, NumberBeyondDoubleRangeIsAJobError) {
+  // nlohmann::json reports it as out_of_range, which JobDocument::parse once let escape (found by fuzz/job).
+  try {
+    JobDocument::parse(R"({"days": 1e999})", "big.json");
+    FAIL();
+  } catch (const JobError& e) {
+    EXPECT_NE(std::string(e.what()).find("1e999"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Job, NonObjectRootIsRejected) {
   EXPECT_THROW(JobDocument::parse("[1,2]", "j"), JobError);
 }
