@@ -13,7 +13,9 @@
 #include <exception>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_file.hpp"
@@ -27,12 +29,83 @@ std::int32_t read_int32(const std::string& bytes, std::size_t at) {
   return static_cast<std::int32_t>(b(0) | (b(1) << 8) | (b(2) << 16) | (b(3) << 24));
 }
 
-// Walks the first header's attribute list (name, type, size, value) up to its end and checks the
-// dataWindow before OpenEXR sizes any table from it, so a tiny hostile file cannot make it allocate
-// gigabytes. `head` is the start of the file.
+// Bytes of the attribute types that OpenEXR reads with a fixed layout whatever size the file declares (so a
+// wrong size would leave its reading out of step with the sizes walked here), or -1.
+int fixed_attribute_size(const std::string& type) {
+  static const std::pair<const char*, int> sizes[] = {{"box2i", 16},
+                                                      {"box2f", 16},
+                                                      {"chromaticities", 32},
+                                                      {"compression", 1},
+                                                      {"deepImageState", 1},
+                                                      {"double", 8},
+                                                      {"envmap", 1},
+                                                      {"float", 4},
+                                                      {"int", 4},
+                                                      {"keycode", 28},
+                                                      {"lineOrder", 1},
+                                                      {"m33f", 36},
+                                                      {"m33d", 72},
+                                                      {"m44f", 64},
+                                                      {"m44d", 128},
+                                                      {"rational", 8},
+                                                      {"tiledesc", 9},
+                                                      {"timecode", 8},
+                                                      {"v2i", 8},
+                                                      {"v2f", 8},
+                                                      {"v2d", 16},
+                                                      {"v3i", 12},
+                                                      {"v3f", 12},
+                                                      {"v3d", 24}};
+  for (const auto& [name, size] : sizes) {
+    if (type == name) return size;
+  }
+  return -1;
+}
+
+// Checks that an attribute's value is laid out as OpenEXR will read it: fixed-size types have their size, a
+// channel list's entries (name, 16 bytes) end exactly with the attribute, and every string of a string vector
+// fits in it (OpenEXR allocates each from its declared length). `value` is the attribute's bytes.
+void check_exr_attribute(const std::string& name, const std::string& type, std::string_view value,
+                         const std::string& source) {
+  const std::string where = "attribute '" + name + "'";
+  const int fixed = fixed_attribute_size(type);
+  if (fixed >= 0) {
+    require_input(value.size() == static_cast<std::size_t>(fixed), source, where,
+                  "a " + type + " takes " + std::to_string(fixed) + " bytes, not " + std::to_string(value.size()));
+  } else if (type == "chlist") {
+    std::size_t at = 0;
+    while (true) {
+      const std::size_t end = value.find('\0', at);
+      require_input(end != std::string_view::npos && end - at < 256, source, where, "unterminated channel name");
+      if (end == at) {
+        require_input(end + 1 == value.size(), source, where, "bytes after the channel list's end");
+        break;
+      }
+      at = end + 1 + 16;  // pixel type, linear flag, 3 reserved bytes, x and y sampling
+      require_input(at <= value.size(), source, where, "truncated channel");
+    }
+  } else if (type == "stringvector") {
+    std::size_t at = 0;
+    while (at < value.size()) {
+      require_input(value.size() - at >= 4, source, where, "truncated string length");
+      const std::int32_t length = read_int32(std::string(value.substr(at, 4)), 0);
+      at += 4;
+      require_input(length >= 0 && static_cast<std::size_t>(length) <= value.size() - at, source, where,
+                    "string of " + std::to_string(length) + " bytes in " + std::to_string(value.size() - at));
+      at += static_cast<std::size_t>(length);
+    }
+  }
+}
+
+// Walks every header's attribute list (name, type, size, value) to its end, all parts of a multi-part file,
+// before OpenEXR reads any: each attribute must fit in the header bytes and be laid out as OpenEXR reads it,
+// and each dataWindow must be sane, so a tiny hostile file cannot make OpenEXR allocate gigabytes (an attribute
+// after the dataWindow, or one behind a channel list longer than its declared size, once could: found by
+// fuzz/exr). `head` is the start of the file.
 void check_exr_header(const std::string& head, std::uintmax_t file_size, const std::string& source) {
   require_input(head.size() >= 8 && read_int32(head, 0) == 20000630, source, "byte 0",
                 "not an OpenEXR file (bad magic number)");
+  const bool multi_part = (read_int32(head, 4) & 0x1000) != 0;
   std::size_t at = 8;
   const auto read_string = [&](const char* what) {
     const std::size_t end = head.find('\0', at);
@@ -42,35 +115,56 @@ void check_exr_header(const std::string& head, std::uintmax_t file_size, const s
     at = end + 1;
     return text;
   };
-  for (int attributes = 0; attributes < 10000; ++attributes) {
-    const std::string name = read_string("name");
-    require_input(!name.empty(), source, "header", "no dataWindow attribute");
-    const std::string type = read_string("type");
-    require_input(at + 4 <= head.size(), source, "byte " + std::to_string(at), "truncated header");
-    const std::int32_t size = read_int32(head, at);
-    at += 4;
-    require_input(size >= 0 && static_cast<std::size_t>(size) <= head.size() - at, source, "byte " + std::to_string(at),
-                  "attribute '" + name + "' larger than the header");
-    if (name == "dataWindow") {
-      require_input(type == "box2i" && size == 16, source, "dataWindow", "must be a box2i");
-      const long long x0 = read_int32(head, at), y0 = read_int32(head, at + 4);
-      const long long x1 = read_int32(head, at + 8), y1 = read_int32(head, at + 12);
-      const long long w = x1 - x0 + 1, h = y1 - y0 + 1;
-      require_input(w > 0 && h > 0, source, "dataWindow", "empty data window");
-      require_input(
-          static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) <= max_image_pixels, source,
-          "dataWindow",
-          "data window " + std::to_string(w) + " x " + std::to_string(h) + " exceeds the limit of 2^28 pixels");
-      // Compressed EXR rarely beats ~1000:1 on a half channel; far larger claims are hostile.
-      require_input(static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) / 4096 <= file_size + 1024,
-                    source, "dataWindow",
-                    "data window " + std::to_string(w) + " x " + std::to_string(h) + " is impossible for a file of " +
-                        std::to_string(file_size) + " bytes");
-      return;
+  for (int part = 0; part < 10000; ++part) {
+    bool data_window = false;
+    std::uint64_t window_pixels = 0, tile_pixels = 0;
+    for (int attributes = 0;; ++attributes) {
+      require_input(attributes < 10000, source, "header", "too many attributes");
+      const std::string name = read_string("name");
+      if (name.empty()) break;  // the header's end
+      const std::string type = read_string("type");
+      require_input(at + 4 <= head.size(), source, "byte " + std::to_string(at), "truncated header");
+      const std::int32_t size = read_int32(head, at);
+      at += 4;
+      require_input(size >= 0 && static_cast<std::size_t>(size) <= head.size() - at, source,
+                    "byte " + std::to_string(at), "attribute '" + name + "' larger than the header");
+      check_exr_attribute(name, type, std::string_view(head).substr(at, static_cast<std::size_t>(size)), source);
+      if (name == "dataWindow") {
+        require_input(type == "box2i" && size == 16, source, "dataWindow", "must be a box2i");
+        const long long x0 = read_int32(head, at), y0 = read_int32(head, at + 4);
+        const long long x1 = read_int32(head, at + 8), y1 = read_int32(head, at + 12);
+        const long long w = x1 - x0 + 1, h = y1 - y0 + 1;
+        require_input(w > 0 && h > 0, source, "dataWindow", "empty data window");
+        require_input(
+            static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) <= max_image_pixels, source,
+            "dataWindow",
+            "data window " + std::to_string(w) + " x " + std::to_string(h) + " exceeds the limit of 2^28 pixels");
+        // Compressed EXR rarely beats ~1000:1 on a half channel; far larger claims are hostile.
+        require_input(
+            static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) / 4096 <= file_size + 1024, source,
+            "dataWindow",
+            "data window " + std::to_string(w) + " x " + std::to_string(h) + " is impossible for a file of " +
+                std::to_string(file_size) + " bytes");
+        data_window = true;
+        window_pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+      } else if (name == "tiles" && type == "tiledesc") {
+        tile_pixels = std::uint64_t{static_cast<std::uint32_t>(read_int32(head, at))} *
+                      static_cast<std::uint32_t>(read_int32(head, at + 4));
+      }
+      at += static_cast<std::size_t>(size);
     }
-    at += static_cast<std::size_t>(size);
+    require_input(data_window, source, "header", "no dataWindow attribute");
+    // OpenEXR allocates a buffer per tile from the tile size alone, which can be far larger than the image (2^27
+    // by 2 pixels in a 400-byte file: found by fuzz/exr). A tile may exceed a small image, but not 256 x 256 too.
+    require_input(
+        tile_pixels <= std::max<std::uint64_t>(window_pixels, 65536), source, "tiles",
+        "tiles of " + std::to_string(tile_pixels) + " pixels for an image of " + std::to_string(window_pixels));
+    // A multi-part file's headers end with an empty one.
+    if (!multi_part) return;
+    require_input(at < head.size(), source, "byte " + std::to_string(at), "truncated header list");
+    if (head[at] == '\0') return;
   }
-  throw InputError(source, "header", "too many attributes");
+  throw InputError(source, "header", "too many parts");
 }
 
 }  // namespace
@@ -123,14 +217,13 @@ Image read_exr(const std::filesystem::path& path) {
     Imf::FrameBuffer frame;
     const std::size_t x_stride = sizeof(float) * static_cast<std::size_t>(channels);
     const std::size_t y_stride = x_stride * static_cast<std::size_t>(w);
-    // OpenEXR addresses the slice with data-window coordinates: offset the base pointer accordingly.
+    // OpenEXR addresses the slice with data-window coordinates. Slice::Make offsets the base pointer in integer
+    // arithmetic: done on the pointer, a window far from the origin overflowed it (undefined behaviour; found
+    // by fuzz/exr).
     for (int c = 0; c < channels; ++c) {
-      char* base = reinterpret_cast<char*>(image.data().data() + c) -
-                   static_cast<std::ptrdiff_t>(window.min.x) * static_cast<std::ptrdiff_t>(x_stride) -
-                   static_cast<std::ptrdiff_t>(window.min.y) * static_cast<std::ptrdiff_t>(y_stride);
       frame.insert(names[static_cast<std::size_t>(c)],
-                   Imf::Slice(Imf::FLOAT, base, x_stride, y_stride, 1, 1,
-                              names[static_cast<std::size_t>(c)] == "A" ? 1.0 : 0.0));
+                   Imf::Slice::Make(Imf::FLOAT, image.data().data() + c, window, x_stride, y_stride, 1, 1,
+                                    names[static_cast<std::size_t>(c)] == "A" ? 1.0 : 0.0));
     }
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
