@@ -52,12 +52,21 @@ std::vector<std::string_view> split_words(std::string_view line) {
   return words;
 }
 
+/// Bytes that the text formats here never hold: the C0 controls but tab, line feed and carriage return. Assimp's
+/// parsers stop at a NUL and take a form feed for a line end but a vertical tab for neither space nor line end, so
+/// text holding them reads differently there than here.
+bool is_control_byte(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u < 9 || u == 11 || u == 12 || (u > 13 && u < 32);
+}
+
 // ---------------------------------------------------------------------------------------------- PLY
 
 struct PlyProperty {
   int size = 0;        ///< bytes of a scalar, or of each list item
   int count_size = 0;  ///< bytes of the list length; 0 for scalars
   bool count_signed = false;
+  bool face_indices = false;  ///< the vertex index list of element "face"
 };
 
 struct PlyElement {
@@ -113,6 +122,10 @@ bool is_ply_number(std::string_view token) {
   throw InputError(source, "byte " + std::to_string(at), message);
 }
 
+// Assimp takes a face without indices for a polygon, and its triangulation then aborts the process on an
+// internal assertion (found by fuzz/mesh_ply).
+constexpr const char* face_without_indices = "a face has no vertex indices";
+
 void check_ply(const std::filesystem::path& path) {
   const std::string source = path.string();
   const std::string bytes = read_file(path);
@@ -126,10 +139,15 @@ void check_ply(const std::filesystem::path& path) {
   std::size_t body = bytes.find('\n', end);
   require_input(body != std::string::npos, source, "header", "file ends right after 'end_header'");
   ++body;
+  // A NUL inside a header line ends the line early for Assimp (found by fuzz/mesh_ply).
+  const auto control = std::find_if(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(body), is_control_byte);
+  require_input(control == bytes.begin() + static_cast<std::ptrdiff_t>(body), source,
+                "byte " + std::to_string(control - bytes.begin()), "a control byte in the header");
 
   enum class Format { unknown, ascii, little, big } format = Format::unknown;
   std::vector<PlyElement> elements;
   std::size_t line_number = 0;
+  bool header_ended = false;
   std::size_t pos = 0;
   while (pos < body) {
     std::size_t eol = bytes.find('\n', pos);
@@ -172,6 +190,7 @@ void check_ply(const std::filesystem::path& path) {
         require_input(
             p.count_size > 0 && p.count_size <= 4 && p.size > 0, source, location,
             "unknown or unsupported list types '" + std::string(words[2]) + " " + std::string(words[3]) + "'");
+        p.face_indices = elements.back().name == "face" && (words[4] == "vertex_indices" || words[4] == "vertex_index");
       } else {
         require_input(words.size() == 3, source, location, "'property' needs a type and a name");
         p.size = ply_type_size(words[1]);
@@ -179,21 +198,40 @@ void check_ply(const std::filesystem::path& path) {
       }
       elements.back().properties.push_back(p);
     } else if (words[0] == "end_header") {
+      header_ended = true;
       break;
+    } else if (!(words[0] == "comment" || words[0] == "obj_info" || (words[0] == "ply" && line_number == 1))) {
+      // Assimp ends an element's property list at a line it does not know, so the layouts would differ
+      // (found by fuzz/mesh_ply: it then sized a list from vertex bytes and allocated 34 GB).
+      throw InputError(source, location, "unknown header line '" + std::string(words[0].substr(0, 40)) + "'");
     }
   }
+  // "end_header" glued to what follows ("end_header0 0 0") makes Assimp's parser loop forever (found by
+  // fuzz/mesh_ply).
+  require_input(header_ended, source, "header", "no line 'end_header' ends the header");
   require_input(format != Format::unknown, source, "header", "no 'format' line");
 
   const std::uint64_t body_size = bytes.size() - body;
   if (format == Format::ascii) {
-    // Each value takes at least one character and one separator; lists are walked token by token.
+    // Each value takes at least one character and one separator; lists are walked token by token. Each item is
+    // one line, as Assimp reads it: a short line would make it parse the next line's words as numbers, throw
+    // and leak its mesh (found by fuzz/mesh_ply).
     std::size_t cursor = body;
+    const auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
     const auto next_token = [&](std::string_view& token) {
-      while (cursor < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
+      while (cursor < bytes.size() && is_blank(bytes[cursor])) ++cursor;
       const std::size_t start = cursor;
       while (cursor < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
       token = std::string_view(bytes.data() + start, cursor - start);
       return !token.empty();
+    };
+    const auto value = [&](std::string_view& token, const PlyElement& e, std::uint64_t i) {
+      if (!next_token(token)) {
+        fail_element(source, cursor, e.name, i,
+                     cursor < bytes.size() ? "the line ends before the item does" : "file ends");
+      }
+      if (!is_ply_number(token))
+        fail_element(source, cursor - token.size(), e.name, i, "a value is not a finite number");
     };
     for (const PlyElement& e : elements) {
       const std::uint64_t min_bytes = e.count * std::max<std::size_t>(e.properties.size(), 1);
@@ -201,11 +239,10 @@ void check_ply(const std::filesystem::path& path) {
                     "element '" + e.name + "' declares " + std::to_string(e.count) + " items but the file has only " +
                         std::to_string(body_size) + " bytes of data");
       for (std::uint64_t i = 0; i < e.count; ++i) {
+        while (cursor < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
         for (const PlyProperty& p : e.properties) {
           std::string_view token;
-          if (!next_token(token)) fail_element(source, cursor, e.name, i, "file ends");
-          if (!is_ply_number(token))
-            fail_element(source, cursor - token.size(), e.name, i, "a value is not a finite number");
+          value(token, e, i);
           if (p.count_size == 0) continue;
           std::int64_t n = -1;
           std::from_chars(token.data(), token.data() + token.size(), n);
@@ -214,13 +251,11 @@ void check_ply(const std::filesystem::path& path) {
             fail_element(source, cursor - token.size(), e.name, i,
                          "list length " + std::to_string(n) + " is negative or longer than the rest of the file");
           }
-          for (std::int64_t k = 0; k < n; ++k) {
-            if (!next_token(token)) fail_element(source, cursor, e.name, i, "file ends");
-            if (!is_ply_number(token)) {
-              fail_element(source, cursor - token.size(), e.name, i, "a value is not a finite number");
-            }
-          }
+          if (p.face_indices && n == 0) fail_element(source, cursor - token.size(), e.name, i, face_without_indices);
+          for (std::int64_t k = 0; k < n; ++k) value(token, e, i);
         }
+        std::string_view extra;
+        if (next_token(extra)) fail_element(source, cursor - extra.size(), e.name, i, "the line holds more values");
       }
     }
     return;
@@ -258,6 +293,7 @@ void check_ply(const std::filesystem::path& path) {
           fail_element(source, cursor - p.count_size, e.name, i,
                        "list length " + std::to_string(n) + " is negative or longer than the rest of the file");
         }
+        if (p.face_indices && n == 0) fail_element(source, cursor - p.count_size, e.name, i, face_without_indices);
         cursor += static_cast<std::uint64_t>(n) * p.size;
       }
     }
@@ -265,6 +301,93 @@ void check_ply(const std::filesystem::path& path) {
 }
 
 // ---------------------------------------------------------------------------------------------- STL
+
+/// Checks ASCII STL token by token against its grammar: `solid [name]`, then facets of `facet normal n n n`,
+/// `outer loop`, three `vertex x y z`, `endloop`, `endfacet`, then `endsolid [name]` (which the last solid may
+/// lack); several solids may follow each other. Assimp leaks its mesh when it stops halfway (a value that is not a
+/// number, a facet cut short; found by fuzz/mesh_stl), so whatever would stop it is rejected here first.
+void check_ascii_stl(const std::string& bytes, const std::string& source) {
+  std::size_t cursor = 0;
+  std::size_t line = 1;
+  const auto skip_space = [&] {
+    while (cursor < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[cursor]))) {
+      if (bytes[cursor] == '\n') ++line;
+      ++cursor;
+    }
+  };
+  const auto next_token = [&] {
+    skip_space();
+    const std::size_t start = cursor;
+    while (cursor < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
+    return std::string_view(bytes.data() + start, cursor - start);
+  };
+  const auto skip_line = [&] {
+    while (cursor < bytes.size() && bytes[cursor] != '\n') ++cursor;
+  };
+  const auto fail = [&](const std::string& problem) {
+    throw InputError(source, "line " + std::to_string(line), problem);
+  };
+  const auto expect = [&](std::string_view word) {
+    const std::string_view token = next_token();
+    if (token != word) {
+      fail("expected '" + std::string(word) + "', found " +
+           (token.empty() ? std::string("the end of the file") : "'" + std::string(token.substr(0, 40)) + "'"));
+    }
+  };
+  // Assimp reads a facet's "normal" and the numbers after "normal" and "vertex" on the keyword's line.
+  const auto word_on_line = [&] {
+    while (cursor < bytes.size() && (bytes[cursor] == ' ' || bytes[cursor] == '\t')) ++cursor;
+    const std::size_t start = cursor;
+    while (cursor < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[cursor]))) ++cursor;
+    return std::string_view(bytes.data() + start, cursor - start);
+  };
+  const auto expect_numbers = [&](const char* what) {
+    for (int k = 0; k < 3; ++k) {
+      const std::string_view token = word_on_line();
+      if (token.empty()) fail(std::string(what) + " needs three numbers on its line");
+      if (!is_ply_number(token)) {
+        fail(std::string(what) + " value '" + std::string(token.substr(0, 40)) + "' is not a finite number");
+      }
+    }
+  };
+  const auto control = std::find_if(bytes.begin(), bytes.end(), is_control_byte);
+  if (control != bytes.end()) {
+    cursor = static_cast<std::size_t>(control - bytes.begin());
+    throw InputError(source, "byte " + std::to_string(cursor), "a control byte in ASCII STL");
+  }
+  for (std::string_view token = next_token(); !token.empty(); token = next_token()) {
+    if (token != "solid") fail("expected 'solid', found '" + std::string(token.substr(0, 40)) + "'");
+    // The name: Assimp takes the line's first word (at most 1023 bytes) and reads the words after it as
+    // keywords or skips them, so no keyword may follow on that line.
+    for (bool first = true;; first = false) {
+      const std::string_view word = word_on_line();
+      if (word.empty()) break;
+      if (first && word.size() >= 1024) fail("the solid's name is longer than 1023 bytes");
+      if (word == "facet" || word == "vertex" || word.starts_with("endsolid")) {
+        fail("'" + std::string(word.substr(0, 40)) + "' on the line of 'solid'");
+      }
+    }
+    while (true) {
+      token = next_token();
+      if (token == "endsolid") break;
+      if (token.empty()) return;  // no endsolid after the last facet: Assimp only warns
+      if (token != "facet") {
+        fail("expected 'facet' or 'endsolid', found '" + std::string(token.substr(0, 40)) + "'");
+      }
+      if (word_on_line() != "normal") fail("'facet' without 'normal' after it on its line");
+      expect_numbers("facet normal");
+      expect("outer");
+      expect("loop");
+      for (int v = 0; v < 3; ++v) {
+        expect("vertex");
+        expect_numbers("vertex");
+      }
+      expect("endloop");
+      expect("endfacet");
+    }
+    skip_line();  // the name after endsolid
+  }
+}
 
 void check_stl(const std::filesystem::path& path, std::uintmax_t size) {
   const std::string source = path.string();
@@ -283,8 +406,10 @@ void check_stl(const std::filesystem::path& path, std::uintmax_t size) {
     return u < 9 || (u > 13 && u < 32);
   });
   if (starts_solid && textual &&
-      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos))
+      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos)) {
+    check_ascii_stl(read_file(path), source);
     return;
+  }
   if (size < 84) throw InputError(source, "byte 0", "too short for a binary STL (" + std::to_string(size) + " bytes)");
   std::uint32_t count = 0;
   for (int b = 0; b < 4; ++b) count |= static_cast<std::uint32_t>(static_cast<unsigned char>(head[80 + b])) << (8 * b);

@@ -132,7 +132,10 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadMeshFile,
                                            "nan_coordinate.obj", "face_index_out_of_range.obj",
                                            "broken_chunk_length.glb", "broken_json_length.glb",
                                            "huge_accessor_count.gltf", "huge_viewless_accessor.gltf",
-                                           "cyclic_nodes.gltf"),
+                                           "cyclic_nodes.gltf", "face_without_indices.ply", "items_on_one_line.ply",
+                                           "end_header_glued.ply", "nul_in_header.ply", "unknown_header_line.ply",
+                                           "not_a_number.stl", "facet_on_solid_line.stl", "form_feed.stl",
+                                           "vertex_over_two_lines.stl"),
                          [](const ::testing::TestParamInfo<const char*>& param) {
                            std::string name = param.param;
                            for (char& c : name) {
