@@ -31,6 +31,7 @@ struct TetArgs {
   std::vector<std::string> bones;
   std::vector<double> up, front, gravity;  ///< --up, --front, --gravity (empty: from --axes and the input)
   double bone_offset = 0.0;
+  double time_limit = 0.0;
   double scale = 0.0;
   double skin_iso = 500.0, bone_iso = 1150.0;
   double edge = 0.0;
@@ -93,6 +94,7 @@ int run_tetrahedralize(const TetArgs& a) {
   options.bone_offset_mm = a.bone_offset;
   options.manifold_boundary = !a.non_manifold;
   if (a.no_perturb) options.perturb = false;
+  options.time_limit_s = a.time_limit;
   const bool phantom_input = a.skin.empty() && a.ct.empty();
   if (!a.size.empty() && !phantom_input) throw Error("--size applies to the built-in phantoms only", ErrorKind::usage);
   if (!a.size.empty() && (a.edge > 0 || a.nodes > 0 || a.tets > 0))
@@ -246,6 +248,10 @@ const RegisterCommand tetrahedralize_command{
       sub->add_flag("--no-perturb", a->no_perturb,
                     "Skip Mesh_3's sliver perturbation (faster; exudation still removes slivers)");
       sub->add_option("--seed", a->seed, "Seed of the mesher's random choices");
+      sub->add_option("--time-limit", a->time_limit,
+                      "Stop a meshing pass that has not finished after this many seconds, with an error (default: "
+                      "300 s plus 1 s per 2000 expected nodes)")
+          ->check(CLI::Range(1.0, 1e6));
       sub->add_option("--skin-triangles", a->skin_triangles,
                       "Remesh the model's skin to about this many triangles (default: the input skin as is)");
       sub->add_option("-o,--out", a->output, "Output tet mesh (.msh, .vtu, .node) with quality per tet");

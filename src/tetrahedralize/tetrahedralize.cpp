@@ -17,18 +17,26 @@
 #include <CGAL/refine_mesh_3.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <thread>
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "core/timer.hpp"
 #include "geometry/bounding_box.hpp"
 #include "geometry/mesh_measures.hpp"
 #include "geometry/mesh_topology.hpp"
+#include "mesh_processing/remove_self_intersections.hpp"
 #include "mesh_processing/repair_mesh.hpp"
+#include "spatial/closest_point.hpp"
+#include "spatial/self_intersection.hpp"
 #include "spatial/winding_number.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/offset_surface.hpp"
@@ -38,10 +46,7 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polyhedron = CGAL::Mesh_polyhedron_3<Kernel>::type;
-using Domain = CGAL::Polyhedral_complex_mesh_domain_3<Kernel, Polyhedron>;
-using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
-using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
-using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
+using PolyhedralDomain = CGAL::Polyhedral_complex_mesh_domain_3<Kernel, Polyhedron>;
 using Point = Kernel::Point_3;
 
 // Subdomain labels of the implicit domain (0 is outside).
@@ -68,34 +73,56 @@ struct MeshPass {
   bool exude_cut_short = false;  ///< the sliver exudation reached its time bound
 };
 
-/// One Mesh_3 run with criteria for `edge` mm.
-MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, double edge,
-                   const TetrahedralizeOptions& o) {
+/// Sets `stop` once `limit_s` seconds have passed (then `timed_out` too) or the user asked to stop, polling
+/// every 50 ms; destroying it ends the thread.
+class RefinementWatchdog {
+ public:
+  explicit RefinementWatchdog(double limit_s)
+      : m_thread([this, limit_s](std::stop_token token) {
+          const auto start = std::chrono::steady_clock::now();
+          while (!token.stop_requested()) {
+            if (interrupt_requested()) {
+              stop.store(true, std::memory_order_release);
+              return;
+            }
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (elapsed > limit_s) {
+              timed_out.store(true);
+              stop.store(true, std::memory_order_release);
+              return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          }
+        }) {}
+  std::atomic<bool> stop{false};
+  std::atomic<bool> timed_out{false};
+
+ private:
+  std::jthread m_thread;  // last: starts after the flags exist, joins before they go
+};
+
+/// One Mesh_3 refinement of `domain` with criteria for `edge` mm, bounded at `node_limit` nodes and
+/// `time_limit_s` seconds, seeded on `surfaces`. Works for the polyhedral complex and the labelled domain.
+template <class D>
+MeshPass refine_domain(const D& domain, const std::vector<const TriMesh*>& surfaces, double edge,
+                       std::size_t node_limit, double time_limit_s, const TetrahedralizeOptions& o) {
+  using Tr = typename CGAL::Mesh_triangulation_3<D, CGAL::Default, CGAL::Sequential_tag>::type;
+  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+  using Crit = CGAL::Mesh_criteria_3<Tr>;
   Stopwatch watch;
-  CGAL::Random rng(o.seed);
   namespace p = CGAL::parameters;
-  // Patches: the skin separates flesh (inside) from the outside (0), each bone separates bone (inside) from
-  // flesh; pairs are (inside, outside) as the domain's ray-shooting Is_in_domain reads them.
-  std::vector<Polyhedron> patches{to_polyhedron(skin)};
-  std::vector<std::pair<int, int>> sides{{domain_flesh, 0}};
-  for (const TriMesh& bone : bones) {
-    patches.push_back(to_polyhedron(bone));
-    sides.emplace_back(domain_bone, domain_flesh);
-  }
-  Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
   // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
   const double cell_size = 0.612 * edge * o.interior_size_factor;
-  Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
-                    p::facet_distance = std::max(o.surface_distance_fraction * edge, o.min_surface_distance_mm),
-                    p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
+  Crit criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
+                p::facet_distance = std::max(o.surface_distance_fraction * edge, o.min_surface_distance_mm),
+                p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
 
   // Seed every surface (skin and each bone component) with points, so no bone is missed by the random
   // initial rays Mesh_3 would shoot from the domain's centre.
-  Complex complex;
-  Triangulation& tr = complex.triangulation();
+  C3t3 complex;
+  Tr& tr = complex.triangulation();
+  auto do_intersect = domain.do_intersect_surface_object();
   auto construct_intersection = domain.construct_intersection_object();
-  std::vector<const TriMesh*> surfaces{&skin};
-  for (const TriMesh& b : bones) surfaces.push_back(&b);
   for (const TriMesh* surface : surfaces) {
     const std::vector<Vec3> normals = vertex_normals(*surface);
     int components = 0;
@@ -110,11 +137,12 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
       const Vec3& n = normals[static_cast<std::size_t>(v)];
       const double h = 0.25 * edge;
       const Vec3 a = x - h * n, b = x + h * n;
-      const auto hit =
-          construct_intersection(Kernel::Segment_3(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z())));
+      const Kernel::Segment_3 segment(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z()));
+      if (!do_intersect(segment)) continue;
+      const auto hit = construct_intersection(segment);
       if (std::get<2>(hit) == 0) continue;
-      const auto vertex = tr.insert(Triangulation::Weighted_point(std::get<0>(hit)));
-      if (vertex == Triangulation::Vertex_handle()) continue;
+      const auto vertex = tr.insert(typename Tr::Weighted_point(std::get<0>(hit)));
+      if (vertex == typename Tr::Vertex_handle()) continue;
       complex.set_dimension(vertex, 2);
       complex.set_index(vertex, std::get<1>(hit));
       ++count;
@@ -129,22 +157,38 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   const auto manifold = o.manifold_boundary ? p::manifold() : p::non_manifold();
   // Refinement stops at max_nodes (Mesh_3's maximal_number_of_vertices) instead of filling the memory: the
   // manifold criterion can refine without end near self-contacts of a scan.
+  // It also stops at the time bound or on an interruption: a watchdog sets the flag Mesher_3 polls between
+  // insertions (CGAL_MESH_3_STOPPED).
   CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
-  const auto limits = p::mesh_3_options(p::maximal_number_of_vertices = o.max_nodes, p::pointer_to_error_code = &error);
-  if (o.perturb) {
-    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(),
-                        p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), p::no_exude(), limits);
-  } else {
-    CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(), p::no_exude(),
-                        limits);
+  {
+    RefinementWatchdog watchdog(time_limit_s);
+    const auto limits = p::mesh_3_options(p::maximal_number_of_vertices = node_limit, p::pointer_to_error_code = &error,
+                                          p::pointer_to_stop_atomic_boolean = &watchdog.stop);
+    if (o.perturb) {
+      CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(),
+                          p::perturb(p::time_limit = 0, p::sliver_bound = o.min_dihedral_deg), p::no_exude(), limits);
+    } else {
+      CGAL::refine_mesh_3(complex, domain, criteria, manifold, p::no_lloyd(), p::no_odt(), p::no_perturb(),
+                          p::no_exude(), limits);
+    }
+    if (error == CGAL::CGAL_MESH_3_STOPPED && !watchdog.timed_out.load()) {
+      throw CancelledError("tetrahedralize: interrupted during the mesh refinement");
+    }
   }
+  const char* touching_hint =
+      "; surfaces that touch or nearly touch themselves or each other (lips, ears, eyelids of a scan; two parts "
+      "sharing an edge or a corner) keep the manifold criterion refining: turn it off (manifold_boundary, "
+      "--non-manifold), or give a coarser surface distance";
   if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
     throw InputError("skin surface", "",
-                     "the mesher reached its limit of " + std::to_string(o.max_nodes) + " nodes at an edge length of " +
-                         std::to_string(edge) +
-                         " mm before the surfaces were resolved; surfaces that nearly touch themselves (lips, ears, "
-                         "eyelids of a scan) need the manifold criterion off (manifold_boundary, --non-manifold), or "
-                         "a coarser surface distance");
+                     "the mesher reached its limit of " + std::to_string(node_limit) + " nodes at an edge length of " +
+                         std::to_string(edge) + " mm before the surfaces were resolved" + touching_hint);
+  }
+  if (error == CGAL::CGAL_MESH_3_STOPPED) {
+    char line[160];
+    std::snprintf(line, sizeof line, "the mesh refinement did not finish within its bound of %.0f s (%zu nodes so far)",
+                  time_limit_s, static_cast<std::size_t>(tr.number_of_vertices()));
+    throw InputError("skin surface", "", line + std::string(touching_hint) + ", or raise the bound (time_limit_s)");
   }
 
   MeshPass pass;
@@ -158,7 +202,7 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
         CGAL::exude_mesh_3(complex, p::time_limit = limit, p::sliver_bound = o.min_dihedral_deg);
     pass.exude_cut_short = code == CGAL::TIME_LIMIT_REACHED;
   }
-  std::unordered_map<Triangulation::Vertex_handle, Index> node_of;
+  std::unordered_map<typename Tr::Vertex_handle, Index> node_of;
   for (auto cell = complex.cells_in_complex_begin(); cell != complex.cells_in_complex_end(); ++cell) {
     Tet tet{};
     Vec3 corner[4];
@@ -181,6 +225,83 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
   }
   pass.seconds = watch.seconds();
   return pass;
+}
+
+/// One Mesh_3 run with criteria for `edge` mm, bounded at `node_limit` nodes and `time_limit_s` seconds of
+/// refinement.
+MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, double edge, std::size_t node_limit,
+                   double time_limit_s, const TetrahedralizeOptions& o) {
+  CGAL::Random rng(o.seed);
+  // Patches: the skin separates flesh (inside) from the outside (0), each bone separates bone (inside) from
+  // flesh; pairs are (inside, outside) as the domain's ray-shooting Is_in_domain reads them.
+  std::vector<Polyhedron> patches{to_polyhedron(skin)};
+  std::vector<std::pair<int, int>> sides{{domain_flesh, 0}};
+  std::vector<const TriMesh*> surfaces{&skin};
+  for (const TriMesh& bone : bones) {
+    patches.push_back(to_polyhedron(bone));
+    sides.emplace_back(domain_bone, domain_flesh);
+    surfaces.push_back(&bone);
+  }
+  const PolyhedralDomain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
+  return refine_domain(domain, surfaces, edge, node_limit, time_limit_s, o);
+}
+
+TriMesh joined(const TriMesh& a, const TriMesh& b) {
+  TriMesh out;
+  out.positions = a.positions;
+  out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
+  out.triangles = a.triangles;
+  const auto offset = static_cast<Index>(a.positions.size());
+  for (const Tri& t : b.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return out;
+}
+
+/// Mesh_3's polyhedral complex domain samples the patches as they are and assumes embedded patches that do
+/// not cross (its in/out tests by ray parity disagree otherwise, and the triangulation it builds can be left
+/// inconsistent): refuse a bone that passes through the skin or another bone, naming it. Each surface is
+/// embedded already (closed_body_surface()).
+void require_embedded_patches(const TriMesh& skin, const std::vector<TriMesh>& bones,
+                              const std::vector<std::string>& bone_names) {
+  const auto refuse = [](const std::string& name, std::size_t crossings, const std::string& what) {
+    throw InputError(name, "",
+                     std::to_string(crossings) + " of its edges cross " + what +
+                         " (or theirs cross it); the mesher needs surfaces that do not pass through each other");
+  };
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    const std::size_t both = self_intersection_count(joined(skin, bones[i]));
+    if (both > 0) refuse(bone_names[i], both, "the skin surface's triangles");
+    for (std::size_t j = i + 1; j < bones.size(); ++j) {
+      const std::size_t pair = self_intersection_count(joined(bones[i], bones[j]));
+      if (pair > 0) refuse(bone_names[j], pair, bone_names[i] + "'s triangles");
+    }
+  }
+}
+
+/// Moves the vertices of `bone` that lie outside `skin` or nearer to it than `clearance` (mm) to that depth
+/// below the skin's closest point, a few rounds (a moved vertex can pull its triangles across). Where the
+/// soft tissue is thinner than a voxel (a CT's forehead), the separately smoothed bone and skin iso-surfaces
+/// cross; the mesher needs them apart.
+void keep_inside(TriMesh& bone, const TriMesh& skin, double clearance) {
+  if (bone.triangle_count() == 0) return;
+  const ClosestPointQuery closest(skin);
+  const WindingNumber winding(skin);
+  const std::vector<Vec3> skin_normals = vertex_normals(skin);
+  for (int round = 0; round < 4; ++round) {
+    const std::vector<std::optional<ClosestPoint>> near = closest.query_batch(bone.positions);
+    const std::vector<bool> inside = winding.inside_batch(bone.positions);
+    std::size_t moved = 0;
+    for (std::size_t v = 0; v < bone.positions.size(); ++v) {
+      if (!near[v] || (inside[v] && near[v]->distance >= clearance)) continue;
+      const Tri& t = skin.triangles[static_cast<std::size_t>(near[v]->triangle)];
+      Vec3 n = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) n += near[v]->barycentric[k] * skin_normals[static_cast<std::size_t>(t[k])];
+      if (!(n.norm() > 0.0)) continue;
+      bone.positions[v] = near[v]->point - clearance * n.normalized();
+      ++moved;
+    }
+    if (moved == 0) break;
+  }
+  bone.normals.clear();
 }
 
 std::string format_mm3(double v) {
@@ -239,6 +360,20 @@ TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool 
     }
     notes.push_back(name + " repaired: " + topology.summary() + " -> " + done.after.summary());
   }
+  // The mesher needs an embedded surface: scans pass through themselves where thin parts press together.
+  if (self_intersection_count(mesh) > 0) {
+    const SelfIntersectionRepair fixed = remove_self_intersections(mesh, name);
+    if (!fixed.embedded() || self_intersection_count(mesh) > 0) {
+      throw InputError(name, "",
+                       "the surface passes through itself (" + std::to_string(fixed.intersecting_pairs_before) +
+                           " pairs of crossing triangles) and removing the crossings failed (" +
+                           std::to_string(fixed.intersecting_pairs_after) + " pairs remain)");
+    }
+    notes.push_back(name + " passed through itself (" + std::to_string(fixed.intersecting_pairs_before) +
+                    " pairs of crossing triangles): the crossing triangles were replaced by smooth patches (" +
+                    std::to_string(fixed.triangles_before) + " -> " + std::to_string(fixed.triangles_after) +
+                    " triangles)");
+  }
   double volume = enclosed_volume(mesh);
   if (volume < 0.0) {
     for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
@@ -274,6 +409,8 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
   auto skin_winding = std::make_shared<const WindingNumber>(skin);
   std::vector<TriMesh> bones;
   require_input(options.max_nodes >= 100, "tetrahedralize options", "max_nodes", "must be at least 100");
+  require_input(std::isfinite(options.time_limit_s) && options.time_limit_s >= 0.0, "tetrahedralize options",
+                "time_limit_s", "must be a finite number of seconds >= 0");
   require_input(std::isfinite(options.bone_offset_mm) && options.bone_offset_mm >= 0.0, "tetrahedralize options",
                 "bone_offset_mm", "must be a finite depth >= 0");
   if (options.bone_offset_mm > 0.0 && bone_inputs.empty()) {
@@ -313,6 +450,12 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
       }
     }
   }
+  std::vector<std::string> bone_names;
+  for (std::size_t i = 0; i < bones.size(); ++i) {
+    bone_names.push_back(bone_inputs.empty() ? "the skin's inner offset surface (bone)"
+                                             : "bone surface " + std::to_string(i));
+  }
+  require_embedded_patches(skin, bones, bone_names);
   r.seconds_prepare = watch.seconds();
 
   // Edge length: given, or from the count target. A Mesh_3 mesh of edge h has about V / (0.1 h^3) tets and
@@ -326,7 +469,15 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
     edge = options.initial_edge_mm > 0.0 ? options.initial_edge_mm
                                          : std::cbrt(r.skin_volume_mm3 * per_tet / (0.1 * target));
   }
-  MeshPass pass = mesh_once(skin, bones, edge, options);
+  // Bounds of each pass: nodes (50 times the estimate for its edge length, at least 100,000, at most
+  // max_nodes) and seconds (time_limit_s, or 300 s plus 1 s per 2,000 expected nodes).
+  const auto run_pass = [&](double h) {
+    const double expected = r.skin_volume_mm3 / (0.5 * h * h * h);
+    const double nodes = std::min(std::max(50.0 * expected, 1e5), static_cast<double>(options.max_nodes));
+    const double seconds = options.time_limit_s > 0.0 ? options.time_limit_s : 300.0 + expected / 2000.0;
+    return mesh_once(skin, bones, h, static_cast<std::size_t>(nodes), seconds, options);
+  };
+  MeshPass pass = run_pass(edge);
   r.passes = 1;
   if (by_count) {
     // Counts fall between h^-2 (surface-dominated) and h^-3 (volume-dominated): start from an exponent of 2.5,
@@ -341,7 +492,7 @@ TetMesh tetrahedralize(const TriMesh& skin_input, const std::vector<TriMesh>& bo
     while (got > 0.0 && std::abs(got - target) > options.count_tolerance * target && r.passes < 4) {
       const double previous_edge = edge, previous_got = got;
       edge *= std::pow(got / target, 1.0 / exponent);
-      pass = mesh_once(skin, bones, edge, options);
+      pass = run_pass(edge);
       total_seconds += pass.seconds;
       ++r.passes;
       got = count_of(pass);
@@ -415,6 +566,7 @@ CtBodySurfaces ct_body_surfaces(const ScalarGrid& grid, double skin_iso, double 
     for (std::size_t t = 0; t < bone_all.triangle_count(); ++t)
       keep[t] = keep[t] && std::abs(component_volume[static_cast<std::size_t>(component[t])]) >= 0.005 * largest;
     TriMesh bone = extract_triangles(bone_all, keep);
+    keep_inside(bone, skin, 0.5 * grid.spacing.minCoeff());
     if (bone.triangle_count() > 0 && enclosed_volume(bone) > 0.0) bones.push_back(std::move(bone));
   }
   out.skin = std::move(skin);

@@ -55,8 +55,14 @@ struct TetrahedralizeOptions {
   /// volume/offset_surface.hpp), a stand-in skeleton for scans, which have no bones (0: none).
   double bone_offset_mm = 0.0;
   /// Meshing stops with an InputError when a pass reaches this many nodes (a guard against runaway refinement,
-  /// which would fill the memory: about 2 GB per million nodes).
+  /// which would fill the memory: about 2 GB per million nodes). Each pass is also bounded at 50 times the
+  /// nodes its edge length should give (at least 100,000), whichever is lower.
   std::size_t max_nodes = 3000000;
+  /// Each meshing pass's refinement stops with an InputError after this many seconds (0: automatic, 300 s
+  /// plus 1 s per 2,000 expected nodes, more than ten times a normal run's). Refinement that never converges
+  /// (the manifold criterion at surfaces that touch themselves or each other along an edge or at a point) ends
+  /// here instead of running forever. An interruption (interrupt_requested()) stops it with CancelledError.
+  double time_limit_s = 0.0;
   /// Seed of Mesh_3's random choices (results are deterministic for a given seed and thread count).
   unsigned seed = 0;
 };
@@ -77,8 +83,9 @@ struct TetrahedralizeReport {
 
 /// The closed, outward copy of a body surface that tetrahedralize() meshes (positions and triangles only): checked,
 /// repaired with repair_mesh() when open, non-manifold or degenerate (scan-sized holes filled; with
-/// `close_openings` every opening, capped and faired), and flipped when it faces inward. What was done is appended
-/// to `notes`. Throws InputError naming `name` for an empty surface or one that stays open.
+/// `close_openings` every opening, capped and faired), freed of self-intersections (remove_self_intersections():
+/// the mesher needs an embedded surface; InputError when that fails) and flipped when it faces inward. What was done is
+/// appended to `notes`. Throws InputError naming `name` for an empty surface or one that stays open.
 TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool close_openings,
                             std::vector<std::string>& notes);
 
@@ -87,15 +94,19 @@ TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool 
 /// the input surfaces (within options.surface_distance_fraction of the edge length); every tet is positively
 /// oriented; quality follows options. Open or non-manifold inputs are first repaired with repair_mesh();
 /// an empty surface, one that stays open, a bone reaching outside the skin or two overlapping bones throw InputError
-/// naming "skin surface" or "bone surface <i>". Node and tet order are deterministic for a given seed.
+/// naming "skin surface" or "bone surface <i>", and so does a bone whose triangles cross the skin's or another
+/// bone's (Mesh_3's polyhedral complex domain needs patches that do not cross). A pass whose refinement has not
+/// converged within its node or time bound (max_nodes, time_limit_s) throws InputError; an interruption,
+/// CancelledError. Node and tet order are deterministic for a given seed.
 TetMesh tetrahedralize(const TriMesh& skin, const std::vector<TriMesh>& bones, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report = nullptr);
 
 /// Skin and bone surfaces of a CT volume, as tetrahedralize_ct meshes them: the skin is the largest component
 /// of the `skin_iso` iso-surface, the bones the components of the `bone_iso` iso-surface that lie inside the
-/// skin and enclose at least 0.5 % of the largest one's volume (extract_iso_surface with 10 Taubin steps to
-/// remove voxel staircases; values above the iso-value are inside). Throws InputError for non-finite
-/// iso-values, bone not above skin, or no skin.
+/// skin and enclose at least 0.5 % of the largest one's volume, their vertices kept half the smallest voxel spacing
+/// below the skin (the separately smoothed iso-surfaces cross where the soft tissue is thinner than a voxel)
+/// (extract_iso_surface with 10 Taubin steps to remove voxel staircases; values above the iso-value are inside). Throws
+/// InputError for non-finite iso-values, bone not above skin, or no skin.
 struct CtBodySurfaces {
   TriMesh skin;
   std::vector<TriMesh> bones;  ///< one surface (all kept components) or none

@@ -183,6 +183,36 @@ TEST(Cli, TetrahedralizeRejectsBadInputWithoutWriting) {
   EXPECT_NE(size.output.find("huge"), std::string::npos) << size.output;
 }
 
+// Two 3 mm cubes sharing an edge (non-manifold there): the mesher's manifold criterion never converges at the
+// shared edge, so tetrahedralize must end with an input error, not run on.
+TEST(Cli, TetrahedralizeOfCubesSharingAnEdgeEndsWithAnError) {
+  const auto dir = test::scratch_dir("cli_two_cubes");
+  std::string obj;
+  int base = 0;
+  for (double x0 : {0.0, 3.0}) {
+    const double y0 = x0;  // the second cube sits diagonally: the cubes share the edge x = y = 3
+    for (int i = 0; i < 8; ++i) {
+      obj += "v " + std::to_string(x0 + 3.0 * (i & 1)) + " " + std::to_string(y0 + 3.0 * ((i >> 1) & 1)) + " " +
+             std::to_string(3.0 * ((i >> 2) & 1)) + "\n";
+    }
+    // Outward quads of the cube with corners numbered by their bits (x = 1, y = 2, z = 4).
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+      obj += "f " + std::to_string(base + q[0] + 1) + " " + std::to_string(base + q[1] + 1) + " " +
+             std::to_string(base + q[2] + 1) + " " + std::to_string(base + q[3] + 1) + "\n";
+    }
+    base += 8;
+  }
+  write_file_atomic(dir / "two_cubes.obj", obj);
+  const auto out = dir / "two_cubes.vtu";
+  std::filesystem::remove(out);
+  const auto result = run_cli("tetrahedralize --skin " + (dir / "two_cubes.obj").string() +
+                              " --nodes 2000 --time-limit 20 -o " + out.string());
+  EXPECT_EQ(result.exit_code, 3) << result.output;
+  EXPECT_NE(result.output.find("skin surface"), std::string::npos) << result.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // A demo stage that fails (here on a corrupt CT in the data folder) is marked failed in the report and the run
 // record, the other stages still run, and the demo exits with the stage's error code naming it.
 TEST(Cli, DemoReportsAFailedStageRunsTheRestAndExitsNonZero) {
