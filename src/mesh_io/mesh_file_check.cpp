@@ -139,10 +139,17 @@ void check_ply(const std::filesystem::path& path) {
   std::size_t body = bytes.find('\n', end);
   require_input(body != std::string::npos, source, "header", "file ends right after 'end_header'");
   ++body;
-  // A NUL inside a header line ends the line early for Assimp (found by fuzz/mesh_ply).
+  // A NUL or a carriage return inside a header line ends the line early for Assimp (found by fuzz/mesh_ply).
   const auto control = std::find_if(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(body), is_control_byte);
   require_input(control == bytes.begin() + static_cast<std::ptrdiff_t>(body), source,
                 "byte " + std::to_string(control - bytes.begin()), "a control byte in the header");
+  const auto require_no_lone_carriage_return = [&](std::size_t from, std::size_t to) {
+    for (std::size_t i = bytes.find('\r', from); i < to; i = bytes.find('\r', i + 1)) {
+      require_input(i + 1 < bytes.size() && bytes[i + 1] == '\n', source, "byte " + std::to_string(i),
+                    "a carriage return inside a line");
+    }
+  };
+  require_no_lone_carriage_return(0, body);
 
   enum class Format { unknown, ascii, little, big } format = Format::unknown;
   std::vector<PlyElement> elements;
@@ -160,6 +167,8 @@ void check_ply(const std::filesystem::path& path) {
     if (words.empty()) continue;
     if (words[0] == "format") {
       require_input(words.size() >= 2, source, location, "incomplete 'format' line");
+      // Assimp keeps the first 'format' line, this check the last (found by fuzz/mesh_ply).
+      require_input(format == Format::unknown, source, location, "a second 'format' line");
       if (words[1] == "ascii")
         format = Format::ascii;
       else if (words[1] == "binary_little_endian")
@@ -210,9 +219,14 @@ void check_ply(const std::filesystem::path& path) {
   // fuzz/mesh_ply).
   require_input(header_ended, source, "header", "no line 'end_header' ends the header");
   require_input(format != Format::unknown, source, "header", "no 'format' line");
+  for (const PlyElement& e : elements) {
+    require_input(e.count == 0 || !e.properties.empty(), source, "line " + std::to_string(e.header_line),
+                  "element '" + e.name + "' declares " + std::to_string(e.count) + " items but no properties");
+  }
 
   const std::uint64_t body_size = bytes.size() - body;
   if (format == Format::ascii) {
+    require_no_lone_carriage_return(body, bytes.size());
     // Each value takes at least one character and one separator; lists are walked token by token. Each item is
     // one line, as Assimp reads it: a short line would make it parse the next line's words as numbers, throw
     // and leak its mesh (found by fuzz/mesh_ply).

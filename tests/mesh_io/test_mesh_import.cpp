@@ -133,9 +133,9 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadMeshFile,
                                            "broken_chunk_length.glb", "broken_json_length.glb",
                                            "huge_accessor_count.gltf", "huge_viewless_accessor.gltf",
                                            "cyclic_nodes.gltf", "face_without_indices.ply", "items_on_one_line.ply",
-                                           "end_header_glued.ply", "nul_in_header.ply", "unknown_header_line.ply",
-                                           "not_a_number.stl", "facet_on_solid_line.stl", "form_feed.stl",
-                                           "vertex_over_two_lines.stl"),
+                                           "end_header_glued.ply", "nul_in_header.ply", "carriage_return_in_header.ply",
+                                           "two_format_lines.ply", "unknown_header_line.ply", "not_a_number.stl",
+                                           "facet_on_solid_line.stl", "form_feed.stl", "vertex_over_two_lines.stl"),
                          [](const ::testing::TestParamInfo<const char*>& param) {
                            std::string name = param.param;
                            for (char& c : name) {
