@@ -65,7 +65,8 @@ const RegisterCommand bench_command{
       sub->add_option("system", *system, "What to time: " + names + " or all")->required();
       sub->add_option("--repeat", options->repetitions, "Timed runs per step (median reported)")
           ->check(CLI::Range(1, 1000));
-      sub->add_option("--size", options->size, "Input size preset: small, paper or fine");
+      sub->add_option("--size", options->size, "Input size preset: small, paper or fine")
+          ->check(CLI::IsMember({"small", "paper", "fine"}));
       sub->add_option("--json", *json_path, "Also write the figures to this JSON file");
       return [=]() {
         nlohmann::json out = nlohmann::json::array();

@@ -57,6 +57,8 @@ int run_convert(const ConvertArgs& a) {
   }
   if (a.remesh_mm > 0) mesh = remesh_isotropic(mesh, a.remesh_mm);
   if (a.decimate > 0) mesh = decimate(mesh, a.decimate);
+  // A mesh whose triangles are all degenerate (every vertex at one point, say) repairs to nothing: no output.
+  require_input(mesh.triangle_count() > 0, a.input, "", "no triangles are left after the options applied");
   if (!mesh.has_normals() || a.remesh_mm > 0 || a.decimate > 0) compute_normals(mesh);
   write_mesh(a.output, mesh);
   std::printf("wrote %s: %zu vertices, %zu triangles, %s (%s)\n", a.output.c_str(), mesh.vertex_count(),

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -147,19 +147,38 @@ void write_plots(RunFolder& run, const std::vector<CurveRow>& rows, const std::v
 }
 
 std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const DesiccationModel& model, double up_to_day) {
-  // Only the totals needed for the CSV and the plots are restored; percentages are recomputed from row 0.
-  std::vector<CurveRow> rows;
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
+  // Only the totals needed for the CSV and the plots are restored; percentages are recomputed from row 0. A
+  // resumed run rewrites the file from these rows, so a missing, foreign or damaged file is an error, not rows
+  // silently lost.
+  const std::string source = csv.string();
+  if (!std::filesystem::is_regular_file(csv)) {
+    throw IoError(source, "is missing: --resume needs the curves of the run so far");
+  }
+  std::istringstream in(read_file(csv));
   const std::size_t parts = model.body.part_names.size();
+  std::string header = csv_header(model.body.part_names);
+  header.pop_back();  // the newline
+  std::string line;
+  if (!std::getline(in, line) || line != header) {
+    throw InputError(source, "line 1", "is not the header of forensim mummify's curves for this body model");
+  }
+  // Part water is stored as a percentage; convert back against the initial water of each part.
+  const DesiccationTotals start = desiccation_totals(model, initial_desiccation_state(model));
+  std::vector<CurveRow> rows;
   while (std::getline(in, line)) {
+    const std::string where = "line " + std::to_string(rows.size() + 2);
     std::vector<double> v;
     std::stringstream s(line);
     std::string cell;
-    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
-    if (v.size() != 7 + 3 * parts)
-      throw InputError(csv.string(), "line " + std::to_string(rows.size() + 2), "unexpected number of columns");
+    while (std::getline(s, cell, ',')) {
+      char* end = nullptr;
+      const double value = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(value)) {
+        throw InputError(source, where, "'" + cell.substr(0, 40) + "' is not a finite number");
+      }
+      v.push_back(value);
+    }
+    if (v.size() != 7 + 3 * parts) throw InputError(source, where, "unexpected number of columns");
     if (v[0] > up_to_day + 1e-9) break;
     CurveRow r;
     r.day = v[0];
@@ -167,24 +186,13 @@ std::vector<CurveRow> read_rows(const std::filesystem::path& csv, const Desiccat
     r.totals.total_kg = v[2];
     r.totals.volume_mm3 = v[3] * 1000.0;
     for (std::size_t p = 0; p < parts; ++p) {
+      r.totals.part_water_kg.push_back(v[7 + 3 * p] / 100.0 * start.part_water_kg[p]);
       r.totals.part_total_kg.push_back(v[8 + 3 * p]);
       r.totals.part_volume_mm3.push_back(v[9 + 3 * p] * 1000.0);
-      r.totals.part_water_kg.push_back(0.0);
     }
     rows.push_back(r);
   }
-  // Part water is stored as a percentage; convert back against the initial water of each part.
-  const DesiccationTotals start = desiccation_totals(model, initial_desiccation_state(model));
-  std::ifstream again(csv);
-  std::getline(again, line);
-  for (CurveRow& r : rows) {
-    std::getline(again, line);
-    std::vector<double> v;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
-    for (std::size_t p = 0; p < parts; ++p) r.totals.part_water_kg[p] = v[7 + 3 * p] / 100.0 * start.part_water_kg[p];
-  }
+  require_input(!rows.empty(), source, "", "holds no rows up to the checkpoint's day");
   return rows;
 }
 
@@ -195,7 +203,6 @@ int run_mummify(const MummifyArgs& a) {
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
   MummifyJob job = read_mummify_job(doc.root(), a);
   doc.check_all_used();
-  RunFolder run(a.out, "mummify");
 
   BodyModel body;
   // The pictures' titles: the phantom, or the model folder's name.
@@ -212,6 +219,8 @@ int run_mummify(const MummifyArgs& a) {
     std::printf("%s phantom, size %s: %zu nodes, %zu tets (%s)\n", job.phantom.c_str(), job.size.c_str(),
                 body.volume.vertex_count(), body.volume.tet_count(), format_seconds(watch.seconds()).c_str());
   }
+  // The output folder is made once the body model has been read: a bad model leaves nothing behind.
+  RunFolder run(a.out, "mummify");
   run.timings().add("body model", watch.seconds());
   // Gravity as the body lay (the model's pose unless the job gives it): livor mortis settles along it and the
   // ground lies across it.
