@@ -34,6 +34,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
 #include "mesh_io/gltf_writer.hpp"
+#include "mesh_io/mesh_file_check.hpp"
 #include "mesh_io/obj_writer.hpp"
 #include "phantoms/ct_head_phantom.hpp"
 #include "phantoms/skin_maps.hpp"
@@ -197,8 +198,15 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   std::optional<ScalarGrid> volume;
   const SkullInputOptions skull_options = skull_input_options(job);
   const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
-  if (!builtin_skull && !phantom_ct && is_volume_path(skull_path) && !std::filesystem::exists(skull_path)) {
-    throw IoError(skull_path, "does not exist");
+  // A CT is read, and a mesh file checked, before the template build starts beside the skull's extraction: a
+  // bad file is an error in a tenth of a second, not after the template.
+  if (!builtin_skull && !phantom_ct) {
+    if (is_volume_path(skull_path)) {
+      if (!std::filesystem::exists(skull_path)) throw IoError(skull_path, "does not exist");
+      volume = read_volume(skull_path);
+    } else {
+      check_mesh_file(skull_path);
+    }
   }
   double template_s = 0.0, skull_s = 0.0;
   const bool template_from_file = !job.template_file.empty();
@@ -214,7 +222,6 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
       volume = make_ct_head_phantom();
       skull = skull_from_volume(*volume, "built-in CT head phantom", skull_options);
     } else if (is_volume_path(skull_path)) {
-      volume = read_volume(skull_path);
       skull = skull_from_volume(*volume, skull_path, skull_options);
     } else {
       skull = load_skull(skull_path, skull_options);

@@ -3,6 +3,8 @@
 // template onto it (craniofacial/template_build.hpp). Writes the template file and what shows it.
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -69,6 +71,20 @@ int run_template_build(const TemplateArgs& a) {
   }
   Stopwatch watch, total;
   Timings timings;
+  // The input files are read before the built-in template is built: a bad file is an error at once.
+  std::optional<ScalarGrid> ct_volume;
+  std::optional<ImportedMesh> head_mesh;
+  if (!a.ct.empty()) {
+    const bool phantom = a.ct == "phantom";
+    if (!phantom && !std::filesystem::exists(a.ct)) throw IoError(a.ct, "does not exist");
+    ct_volume = phantom ? make_ct_head_phantom() : read_volume(a.ct);
+  } else {
+    MeshImportOptions units;
+    units.unit = a.unit;
+    units.scale = a.mesh_scale;
+    head_mesh = import_mesh_with_textures(a.head, units);
+  }
+  timings.add("input", watch.lap());
   TemplateHead base = make_template_head(template_head_options(a.detail));
   timings.add("built-in template", watch.lap());
 
@@ -76,8 +92,7 @@ int run_template_build(const TemplateArgs& a) {
   nlohmann::json inputs;
   if (!a.ct.empty()) {
     const bool phantom = a.ct == "phantom";
-    if (!phantom && !std::filesystem::exists(a.ct)) throw IoError(a.ct, "does not exist");
-    const ScalarGrid volume = phantom ? make_ct_head_phantom() : read_volume(a.ct);
+    const ScalarGrid& volume = *ct_volume;
     const std::string source = phantom ? std::string("built-in CT head phantom") : a.ct;
     SkullInputOptions skull_options;
     skull_options.bone_iso_value = a.bone_iso;
@@ -110,10 +125,7 @@ int run_template_build(const TemplateArgs& a) {
     if (skull.iso_value) inputs["bone_iso"] = *skull.iso_value;
     timings.add("skin", watch.lap());
   } else {
-    MeshImportOptions units;
-    units.unit = a.unit;
-    units.scale = a.mesh_scale;
-    ImportedMesh imported = import_mesh_with_textures(a.head, units);
+    ImportedMesh& imported = *head_mesh;
     input.skin = std::move(imported.mesh);
     if (!a.texture.empty()) {
       input.texture = read_image(a.texture);
