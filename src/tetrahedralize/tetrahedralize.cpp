@@ -46,7 +46,10 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polyhedron = CGAL::Mesh_polyhedron_3<Kernel>::type;
-using PolyhedralDomain = CGAL::Polyhedral_complex_mesh_domain_3<Kernel, Polyhedron>;
+using Domain = CGAL::Polyhedral_complex_mesh_domain_3<Kernel, Polyhedron>;
+using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
+using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
 using Point = Kernel::Point_3;
 
 // Subdomain labels of the implicit domain (0 is outside).
@@ -102,26 +105,21 @@ class RefinementWatchdog {
 };
 
 /// One Mesh_3 refinement of `domain` with criteria for `edge` mm, bounded at `node_limit` nodes and
-/// `time_limit_s` seconds, seeded on `surfaces`. Works for the polyhedral complex and the labelled domain.
-template <class D>
-MeshPass refine_domain(const D& domain, const std::vector<const TriMesh*>& surfaces, double edge,
+/// `time_limit_s` seconds, seeded on `surfaces`.
+MeshPass refine_domain(const Domain& domain, const std::vector<const TriMesh*>& surfaces, double edge,
                        std::size_t node_limit, double time_limit_s, const TetrahedralizeOptions& o) {
-  using Tr = typename CGAL::Mesh_triangulation_3<D, CGAL::Default, CGAL::Sequential_tag>::type;
-  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
-  using Crit = CGAL::Mesh_criteria_3<Tr>;
   Stopwatch watch;
   namespace p = CGAL::parameters;
   // Cell size bound is a circumradius: sqrt(6)/4 of the edge for a regular tet.
   const double cell_size = 0.612 * edge * o.interior_size_factor;
-  Crit criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
-                p::facet_distance = std::max(o.surface_distance_fraction * edge, o.min_surface_distance_mm),
-                p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
+  Criteria criteria(p::facet_angle = o.facet_angle_deg, p::facet_size = edge,
+                    p::facet_distance = std::max(o.surface_distance_fraction * edge, o.min_surface_distance_mm),
+                    p::cell_radius_edge_ratio = o.radius_edge_bound, p::cell_size = cell_size);
 
   // Seed every surface (skin and each bone component) with points, so no bone is missed by the random
   // initial rays Mesh_3 would shoot from the domain's centre.
-  C3t3 complex;
-  Tr& tr = complex.triangulation();
-  auto do_intersect = domain.do_intersect_surface_object();
+  Complex complex;
+  Triangulation& tr = complex.triangulation();
   auto construct_intersection = domain.construct_intersection_object();
   for (const TriMesh* surface : surfaces) {
     const std::vector<Vec3> normals = vertex_normals(*surface);
@@ -137,12 +135,11 @@ MeshPass refine_domain(const D& domain, const std::vector<const TriMesh*>& surfa
       const Vec3& n = normals[static_cast<std::size_t>(v)];
       const double h = 0.25 * edge;
       const Vec3 a = x - h * n, b = x + h * n;
-      const Kernel::Segment_3 segment(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z()));
-      if (!do_intersect(segment)) continue;
-      const auto hit = construct_intersection(segment);
+      const auto hit =
+          construct_intersection(Kernel::Segment_3(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z())));
       if (std::get<2>(hit) == 0) continue;
-      const auto vertex = tr.insert(typename Tr::Weighted_point(std::get<0>(hit)));
-      if (vertex == typename Tr::Vertex_handle()) continue;
+      const auto vertex = tr.insert(Triangulation::Weighted_point(std::get<0>(hit)));
+      if (vertex == Triangulation::Vertex_handle()) continue;
       complex.set_dimension(vertex, 2);
       complex.set_index(vertex, std::get<1>(hit));
       ++count;
@@ -202,7 +199,7 @@ MeshPass refine_domain(const D& domain, const std::vector<const TriMesh*>& surfa
         CGAL::exude_mesh_3(complex, p::time_limit = limit, p::sliver_bound = o.min_dihedral_deg);
     pass.exude_cut_short = code == CGAL::TIME_LIMIT_REACHED;
   }
-  std::unordered_map<typename Tr::Vertex_handle, Index> node_of;
+  std::unordered_map<Triangulation::Vertex_handle, Index> node_of;
   for (auto cell = complex.cells_in_complex_begin(); cell != complex.cells_in_complex_end(); ++cell) {
     Tet tet{};
     Vec3 corner[4];
@@ -242,7 +239,7 @@ MeshPass mesh_once(const TriMesh& skin, const std::vector<TriMesh>& bones, doubl
     sides.emplace_back(domain_bone, domain_flesh);
     surfaces.push_back(&bone);
   }
-  const PolyhedralDomain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
+  const Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &rng);
   return refine_domain(domain, surfaces, edge, node_limit, time_limit_s, o);
 }
 
@@ -363,7 +360,7 @@ TriMesh closed_body_surface(const TriMesh& input, const std::string& name, bool 
   // The mesher needs an embedded surface: scans pass through themselves where thin parts press together.
   if (self_intersection_count(mesh) > 0) {
     const SelfIntersectionRepair fixed = remove_self_intersections(mesh, name);
-    if (!fixed.embedded() || self_intersection_count(mesh) > 0) {
+    if (!fixed.embedded()) {
       throw InputError(name, "",
                        "the surface passes through itself (" + std::to_string(fixed.intersecting_pairs_before) +
                            " pairs of crossing triangles) and removing the crossings failed (" +
