@@ -34,7 +34,7 @@
 #include "geometry/mesh_measures.hpp"
 #include "image/png_io.hpp"
 #include "mesh_io/gltf_writer.hpp"
-#include "mesh_io/mesh_file_check.hpp"
+#include "mesh_io/mesh_import.hpp"
 #include "mesh_io/obj_writer.hpp"
 #include "phantoms/ct_head_phantom.hpp"
 #include "phantoms/skin_maps.hpp"
@@ -198,17 +198,19 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
   std::optional<ScalarGrid> volume;
   const SkullInputOptions skull_options = skull_input_options(job);
   const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
-  // A CT is read, and a mesh file checked, before the template build starts beside the skull's extraction: a
+  // The skull's file (a CT or a mesh) is read before the template build starts beside the skull's extraction: a
   // bad file is an error in a tenth of a second, not after the template.
+  std::optional<ImportedMesh> skull_file;
+  Stopwatch skull_read;
   if (!builtin_skull && !phantom_ct) {
     if (is_volume_path(skull_path)) {
       if (!std::filesystem::exists(skull_path)) throw IoError(skull_path, "does not exist");
       volume = read_volume(skull_path);
     } else {
-      check_mesh_file(skull_path);
+      skull_file = import_mesh_with_textures(skull_path, skull_options.mesh_units);
     }
   }
-  double template_s = 0.0, skull_s = 0.0;
+  double template_s = 0.0, skull_s = skull_read.seconds();
   const bool template_from_file = !job.template_file.empty();
   const auto build_template = [&] {
     Stopwatch part;
@@ -224,9 +226,10 @@ nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesyst
     } else if (is_volume_path(skull_path)) {
       skull = skull_from_volume(*volume, skull_path, skull_options);
     } else {
-      skull = load_skull(skull_path, skull_options);
+      skull = skull_from_mesh(std::move(skull_file->mesh), skull_path, skull_options);
+      skull.mm_per_unit = skull_file->mm_per_unit;
     }
-    skull_s = part.seconds();
+    skull_s += part.seconds();
   };
   std::optional<LandmarkDetection> detection;
   std::optional<SkullCompletion> completion;

@@ -74,8 +74,8 @@ int run_template_build(const TemplateArgs& a) {
   // The input files are read before the built-in template is built: a bad file is an error at once.
   std::optional<ScalarGrid> ct_volume;
   std::optional<ImportedMesh> head_mesh;
+  const bool phantom = a.ct == "phantom";
   if (!a.ct.empty()) {
-    const bool phantom = a.ct == "phantom";
     if (!phantom && !std::filesystem::exists(a.ct)) throw IoError(a.ct, "does not exist");
     ct_volume = phantom ? make_ct_head_phantom() : read_volume(a.ct);
   } else {
@@ -91,7 +91,6 @@ int run_template_build(const TemplateArgs& a) {
   TemplateBuildInput input;
   nlohmann::json inputs;
   if (!a.ct.empty()) {
-    const bool phantom = a.ct == "phantom";
     const ScalarGrid& volume = *ct_volume;
     const std::string source = phantom ? std::string("built-in CT head phantom") : a.ct;
     SkullInputOptions skull_options;
