@@ -24,6 +24,7 @@
 #include <set>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "cli/cli_runner.hpp"
@@ -192,6 +193,12 @@ std::vector<fs::path> corpus(const std::string& name) {
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+/// `words` followed by `tail`: a command line and the options that keep its run quick.
+std::vector<std::string> followed_by(std::vector<std::string> words, const std::vector<std::string>& tail) {
+  words.insert(words.end(), tail.begin(), tail.end());
+  return words;
 }
 
 std::vector<fs::path> joined(std::initializer_list<std::vector<fs::path>> lists) {
@@ -447,10 +454,7 @@ TEST_F(HostileFixture, HostileRender) {
   const auto png = files.out("picture.png");
   const std::string cube = files.cube().string();
   const std::vector<std::string> small = {"--size", "16", "--samples", "1", "-o", png.string()};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), small.begin(), small.end());
-    return a;
-  };
+  const auto args = [&](std::vector<std::string> a) { return followed_by(std::move(a), small); };
   add_inputs(cases, args({"render", "{}"}),
              joined({corpus("mesh_io"), corpus("volume"), corpus("image"), files.meshes()}), png);
   add_inputs(cases, args({"render", cube, "{}"}), joined({corpus("mesh_io"), files.meshes()}), png);
@@ -538,10 +542,7 @@ TEST_F(HostileFixture, HostileWound) {
   const auto out = files.out("wound");
   const std::vector<std::string> quick = {"--resolution", "32", "--picture-size", "0", "--times",
                                           "1h",           "-o", out.string()};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), quick.begin(), quick.end());
-    return a;
-  };
+  const auto args = [&](std::vector<std::string> a) { return followed_by(std::move(a), quick); };
   add_inputs(cases, args({"wound", "--mesh", "{}"}),
              joined({corpus("mesh_io"), corpus("image"), corpus("volume"), files.meshes(), files.degenerate_meshes()}),
              out);
@@ -564,10 +565,7 @@ TEST_F(HostileFixture, HostileReconstruct) {
   const std::vector<std::string> quick = {
       "--template-detail", "coarse", "--picture-size", "0", "--texture-size", "0", "--expressions", "none", "-o",
       out.string()};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), quick.begin(), quick.end());
-    return a;
-  };
+  const auto args = [&](std::vector<std::string> a) { return followed_by(std::move(a), quick); };
   add_inputs(cases, args({"reconstruct", "--skull", "{}"}),
              joined({corpus("mesh_io"), corpus("volume"), corpus("image"), files.meshes(), files.volumes(),
                      files.degenerate_meshes(), files.degenerate_volumes()}),
@@ -592,10 +590,7 @@ TEST_F(HostileFixture, HostileTemplateBuild) {
   const auto out = files.out("template");
   const std::vector<std::string> quick = {"--detail", "coarse", "--picture-size", "0", "--texture-size",
                                           "16",       "-o",     out.string()};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), quick.begin(), quick.end());
-    return a;
-  };
+  const auto args = [&](std::vector<std::string> a) { return followed_by(std::move(a), quick); };
   const std::string cube = files.cube().string();
   add_inputs(cases, args({"template", "build", "--ct", "{}"}),
              joined({corpus("volume"), files.volumes(), files.degenerate_volumes(), corpus("mesh_io")}), out);
