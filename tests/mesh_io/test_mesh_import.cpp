@@ -99,6 +99,16 @@ TEST(MeshImport, UncommonValidFilesPassThePreChecks) {
                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                     "-0 +0 .5\n3e1 0 0.5\n0 30.0 5e-1\n3 0 1 2\n");
   EXPECT_EQ(import_mesh(dir / "ascii.ply", mm).triangle_count(), 1u);
+  // Elements the reader knows besides vertex and face (an edge list, as scanners write) are read past.
+  std::string edges =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element edge 2\nproperty int vertex1\nproperty int vertex2\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n30 0 0\n0 30 0\n0 1\n1 2\n3 0 1 2\n";
+  write_file_atomic(dir / "edges.ply", edges);
+  const TriMesh with_edges = import_mesh(dir / "edges.ply", mm);
+  ASSERT_EQ(with_edges.triangle_count(), 1u);
+  EXPECT_NEAR(bounding_box(with_edges.positions).max[1], 30.0, 1e-9);
 }
 
 TEST(MeshImport, ValidCorpusControlFileImports) {
@@ -126,20 +136,20 @@ TEST_P(BadMeshFile, GivesInputErrorNamingTheFile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Corpus, BadMeshFile,
-                         ::testing::Values("empty.obj", "truncated.obj", "garbage.ply", "huge_vertex_count.ply",
-                                           "vertex_count_exceeds_size.ply", "huge_face_list.ply", "wrong_count.stl",
-                                           "nan_coordinate.obj", "face_index_out_of_range.obj",
-                                           "broken_chunk_length.glb", "broken_json_length.glb",
-                                           "huge_accessor_count.gltf", "huge_viewless_accessor.gltf",
-                                           "cyclic_nodes.gltf", "face_without_indices.ply", "items_on_one_line.ply",
-                                           "end_header_glued.ply", "nul_in_header.ply", "carriage_return_in_header.ply",
-                                           "two_format_lines.ply", "unknown_header_line.ply", "not_a_number.stl",
-                                           "facet_on_solid_line.stl", "form_feed.stl", "vertex_over_two_lines.stl"),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                           std::string name = param.param;
-                           for (char& c : name) {
-                             if (c == '.') c = '_';
-                           }
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Corpus, BadMeshFile,
+    ::testing::Values("empty.obj", "truncated.obj", "garbage.ply", "huge_vertex_count.ply",
+                      "vertex_count_exceeds_size.ply", "huge_face_list.ply", "wrong_count.stl", "nan_coordinate.obj",
+                      "face_index_out_of_range.obj", "broken_chunk_length.glb", "broken_json_length.glb",
+                      "huge_accessor_count.gltf", "huge_viewless_accessor.gltf", "cyclic_nodes.gltf",
+                      "face_without_indices.ply", "items_on_one_line.ply", "end_header_glued.ply", "nul_in_header.ply",
+                      "carriage_return_in_header.ply", "two_format_lines.ply", "unknown_header_line.ply",
+                      "unknown_element.ply", "unknown_element_before_face.ply", "float_list_length.ply",
+                      "not_a_number.stl", "facet_on_solid_line.stl", "form_feed.stl", "vertex_over_two_lines.stl"),
+    [](const ::testing::TestParamInfo<const char*>& param) {
+      std::string name = param.param;
+      for (char& c : name) {
+        if (c == '.') c = '_';
+      }
+      return name;
+    });
