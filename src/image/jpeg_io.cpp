@@ -27,6 +27,14 @@ Image decode_jpeg(std::string_view bytes, const std::string& source, bool linear
   if (width <= 0 || height <= 0 || static_cast<std::int64_t>(width) * height > (std::int64_t{1} << 28))
     throw InputError(source, "header",
                      "declares " + std::to_string(width) + " x " + std::to_string(height) + " pixels (limit 2^28)");
+  // Every 8 x 8 block costs at least one bit of entropy-coded data per component, so no JPEG holds more than 512
+  // pixels per byte; stb decodes a cut-off file as if it were whole, so a few bytes declaring 150 million
+  // pixels would otherwise become a 1.8 GB image (found by fuzz/jpeg). The bound is 8 times that.
+  const auto pixels_declared = static_cast<std::int64_t>(width) * height;
+  if (pixels_declared > static_cast<std::int64_t>(bytes.size()) * 4096)
+    throw InputError(source, "header",
+                     "declares " + std::to_string(width) + " x " + std::to_string(height) +
+                         " pixels, more than a JPEG of " + std::to_string(bytes.size()) + " bytes can hold");
   const int wanted = channels <= 2 ? 1 : 3;
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(data, length, &width, &height, &channels, wanted), stbi_image_free);

@@ -69,6 +69,36 @@ TEST(Jpeg, RejectsCorruptAndForeignData) {
   EXPECT_THROW(decode_jpeg(huge), InputError);
 }
 
+TEST(Jpeg, RejectsMorePixelsThanTheDataCanHold) {
+  // A SOF header declaring 12000 x 12500 pixels (under the 2^28 limit) over a few hundred bytes: stb would decode
+  // it as a 1.8 GB image (found by fuzz/jpeg).
+  std::string bomb = gradient_jpeg(16, 16);
+  for (std::size_t i = 0; i + 8 < bomb.size(); ++i) {
+    if (static_cast<unsigned char>(bomb[i]) == 0xFF && static_cast<unsigned char>(bomb[i + 1]) == 0xC0) {
+      bomb[i + 5] = static_cast<char>(12000 >> 8);
+      bomb[i + 6] = static_cast<char>(12000 & 0xFF);
+      bomb[i + 7] = static_cast<char>(12500 >> 8);
+      bomb[i + 8] = static_cast<char>(12500 & 0xFF);
+      break;
+    }
+  }
+  try {
+    decode_jpeg(bomb, "bomb.jpg");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("12500 x 12000 pixels, more than a JPEG of"), std::string::npos) << e.what();
+  }
+  // A blank picture, the best a JPEG compresses, stays well inside the bound.
+  const int side = 1024;
+  const std::string grey(static_cast<std::size_t>(side * side), '\x80');
+  std::string blank;
+  stbi_write_jpg_to_func(append_bytes, &blank, side, side, 1, grey.data(), 50);
+  const Image decoded = decode_jpeg(blank, "blank.jpg", false);
+  EXPECT_EQ(decoded.width(), side);
+  EXPECT_NEAR(decoded.at(side / 2, side / 2, 0), 128.0f / 255.0f, 2.0f / 255.0f);
+  EXPECT_LT(static_cast<double>(side) * side / static_cast<double>(blank.size()), 4096.0);
+}
+
 TEST(Jpeg, ReadImageChoosesTheDecoderByContent) {
   const auto dir = test::scratch_dir("jpeg");
   write_file_atomic(dir / "picture.png", gradient_jpeg(8, 8));  // a JPEG under a misleading name
