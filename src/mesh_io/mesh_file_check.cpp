@@ -774,4 +774,19 @@ void check_mesh_file(const std::filesystem::path& path) {
   }
 }
 
+std::string ply_bytes_for_assimp(const std::filesystem::path& path) {
+  if (lower_extension(path) != ".ply") return {};
+  std::string bytes = read_file(path);
+  const std::size_t end = bytes.find("end_header");
+  if (end == std::string::npos) return {};
+  const std::size_t body = bytes.find('\n', end);
+  if (body == std::string::npos || body + 1 >= bytes.size() || bytes[body + 1] != '\n') return {};
+  const std::size_t format = bytes.find("\nformat ");
+  if (format == std::string::npos || format > end) return {};
+  const std::size_t words = bytes.find_first_not_of(' ', format + 8);
+  if (words == std::string::npos || bytes.compare(words, 7, "binary_") != 0) return {};
+  bytes.insert(body + 1, 1, '\n');
+  return bytes;
+}
+
 }  // namespace forensim

@@ -265,12 +265,15 @@ ImportedMesh import_mesh_with_textures(const std::filesystem::path& path, const 
   if (unit != "auto" && options.scale <= 0.0) (void)mm_per_unit(unit);  // reject unknown units before reading
 
   check_mesh_file(path);
+  const std::string ply_bytes = ply_bytes_for_assimp(path);
 
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = nullptr;
+  constexpr unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   try {
-    scene = importer.ReadFile(source, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+    scene = ply_bytes.empty() ? importer.ReadFile(source, flags)
+                              : importer.ReadFileFromMemory(ply_bytes.data(), ply_bytes.size(), flags, "ply");
   } catch (const std::exception& e) {
     throw InputError(source, "", std::string("Assimp failed: ") + e.what());
   }

@@ -1,6 +1,7 @@
 // Import: unit handling, welding, and the bad-file corpus (every hostile file must give an InputError
 // naming the file, without crashing or allocating from its declared counts).
 #include <gtest/gtest.h>
+#include <cstring>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -93,6 +94,26 @@ TEST(MeshImport, UncommonValidFilesPassThePreChecks) {
   const TriMesh big = import_mesh(dir / "big.ply", mm);
   ASSERT_EQ(big.triangle_count(), 1u);
   EXPECT_NEAR(bounding_box(big.positions).max[0], 30.0, 1e-9);
+  // Binary PLY whose data starts with a line feed byte (x = 1.0000012f, bytes 0a 00 80 3f): Assimp alone skips
+  // it as part of the header line and reads every value one byte off (found by fuzz/mesh_ply).
+  std::string lf =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto put_le = [&lf](const void* p, std::size_t n) { lf.append(static_cast<const char*>(p), n); };
+  std::uint32_t first_x = 0x3f80000au;
+  float x0 = 0.0f;
+  std::memcpy(&x0, &first_x, 4);
+  for (const float v : {x0, 0.0f, 0.0f, 30.0f, 0.0f, 0.0f, 0.0f, 30.0f, 0.0f}) put_le(&v, 4);
+  const unsigned char three = 3;
+  put_le(&three, 1);
+  for (const std::int32_t v : {0, 1, 2}) put_le(&v, 4);
+  ASSERT_EQ(lf[lf.find("end_header\n") + 11], '\n');
+  write_file_atomic(dir / "line_feed_first.ply", lf);
+  const TriMesh shifted = import_mesh(dir / "line_feed_first.ply", mm);
+  ASSERT_EQ(shifted.triangle_count(), 1u);
+  EXPECT_NEAR(bounding_box(shifted.positions).min[0], 0.0, 1e-9);
+  EXPECT_NEAR(bounding_box(shifted.positions).max[0], 30.0, 1e-6);
+  EXPECT_NEAR(bounding_box(shifted.positions).max[1], 30.0, 1e-6);
   // ASCII PLY with signed and exponent notation.
   write_file_atomic(dir / "ascii.ply",
                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
