@@ -1,6 +1,8 @@
 // False positives of -Wnull-dereference inside CGAL's triangulation containers after inlining (reported at
 // header locations, so disabled before any include).
 #pragma GCC diagnostic ignored "-Wnull-dereference"
+// Likewise -Wmaybe-uninitialized in std::pair and CGAL's Polyhedral_envelope at -O1 (sanitizer builds).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include "mesh_processing/remove_self_intersections.hpp"
 
