@@ -11,12 +11,10 @@ namespace forensim {
 
 /// Checks `path` by its extension (.ply, .stl, .obj, .glb, .gltf; other formats only for emptiness).
 /// Throws IoError when it cannot be read, InputError(path, location, problem) naming the first problem.
-void check_mesh_file(const std::filesystem::path& path);
-
-/// Assimp 5.2.5 skips one line feed after a PLY's `end_header` line even in a binary file, so a binary body
-/// whose first byte is 0x0A (about one real file in 256) is read one byte off. For such a file (checked by
-/// check_mesh_file first) returns its bytes with one line feed added after the header, for
-/// Assimp::Importer::ReadFileFromMemory; returns an empty string for every other file, which reads as it is.
-std::string ply_bytes_for_assimp(const std::filesystem::path& path);
+/// Returns the bytes Assimp must read in place of the file, or an empty string when it reads the file as it is:
+/// Assimp 5.2.5 skips one line feed after a PLY's `end_header` line even in a binary file, so a binary body whose
+/// first byte is 0x0A (about one real file in 256) comes back with one line feed added after the header, for
+/// Assimp::Importer::ReadFileFromMemory.
+std::string check_mesh_file(const std::filesystem::path& path);
 
 }  // namespace forensim

@@ -264,8 +264,7 @@ ImportedMesh import_mesh_with_textures(const std::filesystem::path& path, const 
                 "must be a finite number >= 0");
   if (unit != "auto" && options.scale <= 0.0) (void)mm_per_unit(unit);  // reject unknown units before reading
 
-  check_mesh_file(path);
-  const std::string ply_bytes = ply_bytes_for_assimp(path);
+  const std::string ply_bytes = check_mesh_file(path);
 
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
