@@ -7,7 +7,7 @@ export CCACHE_NOHASHDIR ?= 1
 
 # The modules whose quick tests `make sanitize` builds and runs under ASan + UBSan: the readers, the numerical
 # kernels and the two simulations; craniofacial, cli and server join when CI sees them change (.ci/run), and
-# `make sanitize SANITIZE_MODULES=` runs every module.
+# `make sanitize SANITIZE_MODULES=` runs every module; SANITIZE_EXTRA adds modules to the list.
 SANITIZE_MODULES ?= core geometry mesh_io tet_io image volume spatial mesh_processing render report texture wound \
 	phantoms fem tetrahedralize desiccation body pbd skin
 space := $(subst ,, )
@@ -35,7 +35,7 @@ test-slow: build
 	ctest --preset release-slow
 
 sanitize: deps
-	cmake --preset sanitize -DFORENSIM_TEST_MODULES="$(subst $(space),;,$(strip $(SANITIZE_MODULES)))"
+	cmake --preset sanitize -DFORENSIM_TEST_MODULES="$(subst $(space),;,$(strip $(SANITIZE_MODULES) $(SANITIZE_EXTRA)))"
 	cmake --build --preset sanitize -j $(JOBS) --target forensim_tests
 	ctest --preset sanitize
 
