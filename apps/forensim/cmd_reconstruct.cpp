@@ -13,6 +13,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/job.hpp"
 #include "core/parallel.hpp"
@@ -77,6 +78,7 @@ std::string table_name(const std::string& name) {
 }
 
 int run_reconstruct(ReconstructArgs& a, CLI::App& sub) {
+  check_output_path(a.out, OutputKind::folder);
   // 1. The job: the command line's values, overridden by a job file where it gives them, and the command line
   // again where an option was typed explicitly.
   ReconstructJob cli_job = a.job;

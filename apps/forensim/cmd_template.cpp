@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/run_folder.hpp"
 #include "core/timer.hpp"
@@ -43,6 +44,7 @@ nlohmann::json report_json(const TemplateBuildReport& r) {
 }  // namespace
 
 int run_template_build(const TemplateArgs& a) {
+  check_output_path(a.out, OutputKind::folder);
   if (a.builtin) {
     if (!a.ct.empty() || !a.head.empty()) throw Error("--builtin takes no --ct or --head", ErrorKind::usage);
     Stopwatch watch;

@@ -9,6 +9,7 @@
 #include "body/phantom_model.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "geometry/mesh_measures.hpp"
@@ -104,6 +105,10 @@ int run_tetrahedralize(const TetArgs& a) {
                 ErrorKind::usage);
   if (a.skin_triangles > 0 && phantom_input && !a.size.empty())
     throw Error("--size sets the skin size of a phantom; leave out --skin-triangles", ErrorKind::usage);
+
+  if (!a.output.empty()) check_output_path(a.output, OutputKind::file);
+  if (!a.model.empty()) check_output_path(a.model, OutputKind::folder);
+  if (!a.render.empty()) check_output_path(a.render, OutputKind::file);
 
   TetrahedralizeReport report;
   TetMesh mesh;

@@ -13,6 +13,33 @@ namespace {
 std::atomic<unsigned> g_counter{0};
 }
 
+void check_output_path(const std::filesystem::path& path, OutputKind kind) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw IoError("(empty)", "an output path is empty");
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status)) {
+    if (kind == OutputKind::file && fs::is_directory(status)) throw IoError(path.string(), "is a folder, not a file");
+    if (kind == OutputKind::folder && !fs::is_directory(status)) {
+      throw IoError(path.string(), "cannot create output folder: a file of that name exists");
+    }
+  }
+  // The nearest existing ancestor (the path itself for an existing folder) must be a writable folder.
+  fs::path existing =
+      (kind == OutputKind::folder && fs::is_directory(status)) ? path : fs::absolute(path, ec).parent_path();
+  if (ec) throw IoError(path.string(), "cannot resolve the output path: " + ec.message());
+  while (!existing.empty() && !fs::exists(existing, ec)) {
+    if (existing == existing.parent_path()) break;
+    existing = existing.parent_path();
+  }
+  if (!fs::is_directory(existing, ec)) {
+    throw IoError(path.string(), "cannot create the output: " + existing.string() + " is not a folder");
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    throw IoError(path.string(), "cannot create the output: the folder " + existing.string() + " is not writable");
+  }
+}
+
 AtomicFile::AtomicFile(std::filesystem::path final_path, bool binary) : m_final(std::move(final_path)) {
   std::error_code ec;
   if (m_final.has_parent_path()) std::filesystem::create_directories(m_final.parent_path(), ec);

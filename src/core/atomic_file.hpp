@@ -34,6 +34,16 @@ class AtomicFile {
   bool m_committed = false;
 };
 
+/// What an output path names: a file (written through AtomicFile) or a folder (created with its parents).
+enum class OutputKind { file, folder };
+
+/// Checks, before any work and without creating anything, that an output can be made at `path`: a file
+/// output must not name an existing folder, a folder output must not name an existing non-folder, and the
+/// nearest existing ancestor must be a folder this process may write into. Commands call it for each output
+/// option first, so a bad output path fails in milliseconds rather than after the computation. Throws IoError
+/// naming `path` and the problem.
+void check_output_path(const std::filesystem::path& path, OutputKind kind);
+
 /// Writes `bytes` to `path` atomically. Throws IoError.
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
 /// Reads a whole file; throws IoError when it cannot be read or is larger than `max_bytes`.

@@ -103,12 +103,14 @@ std::string tail(const std::string& text, std::size_t n = 600) {
 void run_hostile(const std::string& group, const std::vector<HostileCase>& cases) {
   Tally tally;
   std::string failures;
+  std::vector<std::pair<double, std::string>> slowest;  // (seconds, command line) of the slowest runs
   for (const HostileCase& c : cases) {
     std::error_code ec;
     const bool output_existed = !c.output.empty() && fs::exists(c.output, ec);
     const auto r = run_cli_timed(c.arguments, k_time_limit_s);
     ++tally.pairs;
     tally.seconds += r.seconds;
+    slowest.emplace_back(r.seconds, command_line(c.arguments));
     std::string problem;
     if (r.exec_errno != 0) {
       problem = std::string("forensim could not be started: ") + std::strerror(r.exec_errno);
@@ -143,6 +145,11 @@ void run_hostile(const std::string& group, const std::vector<HostileCase>& cases
   total.seconds += tally.seconds;
   std::printf("hostile inputs (%s): %zu (command, input) pairs, %zu signals, %zu hangs, %zu other failures (%.1f s)\n",
               group.c_str(), tally.pairs, tally.signals, tally.hangs, tally.failures, tally.seconds);
+  const std::size_t shown = std::min<std::size_t>(3, slowest.size());
+  std::partial_sort(slowest.begin(), slowest.begin() + static_cast<std::ptrdiff_t>(shown), slowest.end(),
+                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < shown; ++i)
+    std::printf("  slowest: %.2f s  %s\n", slowest[i].first, slowest[i].second.c_str());
   ::testing::Test::RecordProperty("pairs", static_cast<int>(tally.pairs));
   ::testing::Test::RecordProperty("signals", static_cast<int>(tally.signals));
   ::testing::Test::RecordProperty("hangs", static_cast<int>(tally.hangs));

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "core/atomic_file.hpp"
@@ -36,6 +38,44 @@ TEST(AtomicFile, ReadErrorsNameThePath) {
   EXPECT_THROW((void)read_file(dir), IoError);
   write_file_atomic(dir / "big", std::string(100, 'x'));
   EXPECT_THROW((void)read_file(dir / "big", 10), IoError);
+}
+
+TEST(OutputPath, GoodPathsPassAndCreateNothing) {
+  const auto dir = test::scratch_dir("output_path");
+  EXPECT_NO_THROW(check_output_path(dir / "new" / "deeper" / "out.glb", OutputKind::file));
+  EXPECT_NO_THROW(check_output_path(dir / "new" / "folder", OutputKind::folder));
+  EXPECT_NO_THROW(check_output_path(dir, OutputKind::folder));  // an existing folder is reused
+  write_file_atomic(dir / "existing.txt", "x");
+  EXPECT_NO_THROW(check_output_path(dir / "existing.txt", OutputKind::file));  // replaced atomically
+  EXPECT_FALSE(std::filesystem::exists(dir / "new"));
+}
+
+TEST(OutputPath, BadPathsNameThePathAndTheProblem) {
+  const auto dir = test::scratch_dir("output_path");
+  write_file_atomic(dir / "a_file", "x");
+  const auto message = [](const std::filesystem::path& path, OutputKind kind) -> std::string {
+    try {
+      check_output_path(path, kind);
+    } catch (const IoError& e) {
+      EXPECT_EQ(e.exit_code(), static_cast<int>(ErrorKind::io));
+      return e.what();
+    }
+    return "";
+  };
+  const std::string below_a_file = message(dir / "a_file" / "sub" / "out.png", OutputKind::file);
+  EXPECT_NE(below_a_file.find("a_file/sub/out.png"), std::string::npos) << below_a_file;
+  EXPECT_NE(below_a_file.find("is not a folder"), std::string::npos) << below_a_file;
+  EXPECT_NE(message(dir / "a_file", OutputKind::folder).find("a file of that name exists"), std::string::npos);
+  EXPECT_NE(message(dir, OutputKind::file).find("is a folder"), std::string::npos);
+  EXPECT_NE(message("", OutputKind::file).find("empty"), std::string::npos);
+  if (::geteuid() != 0) {  // root may write anywhere
+    std::filesystem::create_directories(dir / "read_only");
+    std::filesystem::permissions(dir / "read_only",
+                                 std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    const std::string read_only = message(dir / "read_only" / "new" / "out", OutputKind::folder);
+    std::filesystem::permissions(dir / "read_only", std::filesystem::perms::owner_all);
+    EXPECT_NE(read_only.find("not writable"), std::string::npos) << read_only;
+  }
 }
 
 TEST(RunFolder, RecordsJobSeedTimingsAndOutputs) {
