@@ -25,13 +25,10 @@ void check_output_path(const std::filesystem::path& path, OutputKind kind) {
     }
   }
   // The nearest existing ancestor (the path itself for an existing folder) must be a writable folder.
-  fs::path existing =
-      (kind == OutputKind::folder && fs::is_directory(status)) ? path : fs::absolute(path, ec).parent_path();
+  fs::path existing = fs::absolute(path, ec);
   if (ec) throw IoError(path.string(), "cannot resolve the output path: " + ec.message());
-  while (!existing.empty() && !fs::exists(existing, ec)) {
-    if (existing == existing.parent_path()) break;
-    existing = existing.parent_path();
-  }
+  if (kind == OutputKind::file || !fs::is_directory(status)) existing = existing.parent_path();
+  while (existing.has_relative_path() && !fs::exists(existing, ec)) existing = existing.parent_path();
   if (!fs::is_directory(existing, ec)) {
     throw IoError(path.string(), "cannot create the output: " + existing.string() + " is not a folder");
   }
