@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "body/body_model_io.hpp"
 #include "cli/cli_runner.hpp"
@@ -46,6 +48,39 @@ TEST(Cli, VersionAndHelp) {
   for (const char* command :
        {"info", "convert", "isosurface", "render", "phantom", "tetrahedralize", "mummify", "wound", "demo"}) {
     EXPECT_NE(help.output.find(command), std::string::npos) << command;
+  }
+}
+
+// run_cli_timed runs the command line in a forked copy of the test process (cli_runner.hpp): the same exit
+// code and output as the executable; the executable only where this process already runs other threads
+// (tests before this one in the same process), never when the test runs alone, as CTest runs it.
+TEST(CliRunner, ForkedCommandLineMatchesTheExecutable) {
+  const auto dir = test::scratch_dir("cli_runner");
+  const std::string cube = (dir / "cube.obj").string();
+  write_cube_obj(cube, 10.0);
+  {
+    std::ofstream garbage(dir / "garbage.obj");
+    garbage << "v 1 2\nf 1 2 9\n";
+  }
+  const std::vector<std::vector<std::string>> runs = {{"--version"},
+                                                      {"info", cube},
+                                                      {"info", (dir / "garbage.obj").string()},
+                                                      {"info", (dir / "missing.obj").string()},
+                                                      {"info", "--no-such-option", cube},
+                                                      {"convert", cube, (dir / "cube.stl").string()}};
+  for (const auto& arguments : runs) {
+    std::string line;
+    for (const auto& a : arguments) line += (line.empty() ? "" : " ") + a;
+    const auto forked = test::run_cli_timed(arguments, 120.0);
+    if (::testing::UnitTest::GetInstance()->test_to_run_count() == 1) {
+      EXPECT_TRUE(forked.in_process) << line << ": run alone, this test's process ran the executable";
+    } else if (!forked.in_process) {
+      EXPECT_GT(test::thread_count(), 1) << line << ": a single-threaded test process ran the executable";
+    }
+    const auto executed = run_cli(line);
+    EXPECT_EQ(forked.signal, 0) << line;
+    EXPECT_EQ(forked.exit_code, executed.exit_code) << line;
+    EXPECT_EQ(forked.output, executed.output) << line;
   }
 }
 
