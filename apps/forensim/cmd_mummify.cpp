@@ -203,6 +203,7 @@ int run_mummify(const MummifyArgs& a) {
   JobDocument doc = a.job.empty() ? JobDocument::empty("command line") : JobDocument::load(a.job);
   MummifyJob job = read_mummify_job(doc.root(), a);
   doc.check_all_used();
+  check_output_path(a.out, OutputKind::folder);
 
   BodyModel body;
   // The pictures' titles: the phantom, or the model folder's name.

@@ -73,18 +73,24 @@ int run_template_build(const TemplateArgs& a) {
   }
   Stopwatch watch, total;
   Timings timings;
-  // The input files are read before the built-in template is built: a bad file is an error at once.
+  // Every input file (volume or head, landmarks, texture) is read before the built-in template is built: a
+  // bad file is an error at once.
   std::optional<ScalarGrid> ct_volume;
   std::optional<ImportedMesh> head_mesh;
+  LandmarkSet landmarks_read;  // --landmarks (with --ct) or --skin-landmarks (with --head), unless auto
+  Image texture_read;          // --texture
   const bool phantom = a.ct == "phantom";
   if (!a.ct.empty()) {
     if (!phantom && !std::filesystem::exists(a.ct)) throw IoError(a.ct, "does not exist");
     ct_volume = phantom ? make_ct_head_phantom() : read_volume(a.ct);
+    if (a.landmarks != "auto") landmarks_read = read_landmarks(a.landmarks);
   } else {
     MeshImportOptions units;
     units.unit = a.unit;
     units.scale = a.mesh_scale;
     head_mesh = import_mesh_with_textures(a.head, units);
+    if (a.skin_landmarks != "auto") landmarks_read = read_landmarks(a.skin_landmarks);
+    if (!a.texture.empty()) texture_read = read_image(a.texture);
   }
   timings.add("input", watch.lap());
   TemplateHead base = make_template_head(template_head_options(a.detail));
@@ -109,7 +115,7 @@ int run_template_build(const TemplateArgs& a) {
       }
       timings.add("landmark detection", watch.lap());
     } else {
-      input.skull_landmarks = read_landmarks(a.landmarks);
+      input.skull_landmarks = std::move(landmarks_read);
     }
     double skin_iso = 0.0;
     input.skin = real_face_surface(volume, source, {}, &skin_iso);
@@ -129,7 +135,7 @@ int run_template_build(const TemplateArgs& a) {
     ImportedMesh& imported = *head_mesh;
     input.skin = std::move(imported.mesh);
     if (!a.texture.empty()) {
-      input.texture = read_image(a.texture);
+      input.texture = std::move(texture_read);
     } else {
       for (const EmbeddedTexture& t : imported.textures) {
         if (t.role != "base_color") continue;
@@ -145,7 +151,7 @@ int run_template_build(const TemplateArgs& a) {
       input.skin_landmarks = skin_landmarks_by_registration(base, input.skin, &registration_rms);
       timings.add("skin landmarks by registration", watch.lap());
     } else {
-      input.skin_landmarks = read_landmarks(a.skin_landmarks);
+      input.skin_landmarks = std::move(landmarks_read);
     }
     input.source = "head mesh " + a.head;
     inputs = {{"head", a.head},
