@@ -4,8 +4,6 @@
 # test, near the end with the other core idle. CTest replaces these figures with its own measurements once it
 # has them (Testing/Temporary/CTestCostData.txt). Seconds on a 2-core machine with ../shared/data; only the
 # order matters.
-cmake_policy(PUSH)
-cmake_policy(SET CMP0057 NEW)  # if(IN_LIST); CTest reads this file without the project's policies
 set(forensim_test_costs
     "Demo.WritesReportWithPicturesAndTimings" 260
     "SlowMummifyCli.RunsWritesOutputsAndResumes" 72
@@ -28,15 +26,14 @@ endforeach()
 # "Suite/Test.Case/param  # GetParam() = ...").
 list(LENGTH forensim_test_costs forensim_cost_count)
 math(EXPR forensim_last "${forensim_cost_count} - 2")
-foreach(test IN LISTS forensim_known_tests)
-  foreach(i RANGE 0 ${forensim_last} 2)
-    math(EXPR j "${i} + 1")
-    list(GET forensim_test_costs ${i} name)
-    list(GET forensim_test_costs ${j} cost)
+foreach(i RANGE 0 ${forensim_last} 2)
+  math(EXPR j "${i} + 1")
+  list(GET forensim_test_costs ${i} name)
+  list(GET forensim_test_costs ${j} cost)
+  foreach(test IN LISTS forensim_known_tests)
     string(FIND "${test} " "${name} " at)
     if(at EQUAL 0)
       set_tests_properties("${test}" PROPERTIES COST ${cost})
     endif()
   endforeach()
 endforeach()
-cmake_policy(POP)

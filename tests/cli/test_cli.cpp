@@ -59,16 +59,15 @@ TEST(CliRunner, ForkedCommandLineMatchesTheExecutable) {
   const auto dir = test::scratch_dir("cli_runner");
   const std::string cube = (dir / "cube.obj").string();
   write_cube_obj(cube, 10.0);
-  {
-    std::ofstream garbage(dir / "garbage.obj");
-    garbage << "v 1 2\nf 1 2 9\n";
-  }
+  write_file_atomic(dir / "garbage.obj", "v 1 2\nf 1 2 9\n");
   const std::vector<std::vector<std::string>> runs = {{"--version"},
                                                       {"info", cube},
                                                       {"info", (dir / "garbage.obj").string()},
                                                       {"info", (dir / "missing.obj").string()},
                                                       {"info", "--no-such-option", cube},
                                                       {"convert", cube, (dir / "cube.stl").string()}};
+  // The same words forked and executed; only the times a command reports ("(0.05 s)") may differ.
+  const std::regex seconds(R"(\([0-9.]+ s\))");
   for (const auto& arguments : runs) {
     std::string line;
     for (const auto& a : arguments) line += (line.empty() ? "" : " ") + a;
@@ -81,8 +80,6 @@ TEST(CliRunner, ForkedCommandLineMatchesTheExecutable) {
     const auto executed = run_cli(line);
     EXPECT_EQ(forked.signal, 0) << line;
     EXPECT_EQ(forked.exit_code, executed.exit_code) << line;
-    // The same words; only the times a command reports ("(0.05 s)") may differ.
-    const std::regex seconds(R"(\([0-9.]+ s\))");
     EXPECT_EQ(std::regex_replace(forked.output, seconds, "(s)"), std::regex_replace(executed.output, seconds, "(s)"))
         << line;
   }
