@@ -31,7 +31,7 @@
 #include "craniofacial/template_head.hpp"
 #include "craniofacial/template_landmark_detection.hpp"
 #include "phantoms/ct_head_phantom.hpp"
-#include "reconstruct_job.hpp"
+#include "reconstruct/reconstruct_job.hpp"
 #include "volume/iso_surface.hpp"
 #include "volume/volume_reader.hpp"
 

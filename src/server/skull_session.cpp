@@ -13,10 +13,9 @@
 #include "craniofacial/landmark_io.hpp"
 #include "craniofacial/landmark_vocabulary.hpp"
 #include "craniofacial/skull_skin_violations.hpp"
-#include "craniofacial/template_carry.hpp"
-#include "craniofacial/template_landmark_detection.hpp"
 #include "craniofacial/tissue_depth_table.hpp"
 #include "mesh_io/gltf_writer.hpp"
+#include "reconstruct/reconstruct_inputs.hpp"
 #include "server/api_error.hpp"
 #include "server/mesh_arrays.hpp"
 
@@ -51,62 +50,67 @@ auto as_bad_request(const std::string& field, F&& body) {
 }  // namespace
 
 TissueDepths select_session_depths(const SkullDepthChoice& choice) {
-  const std::string name = choice.table == "rhine_1983" ? "rhine_1983_sw_native_american_female_normal" : choice.table;
-  const TissueDepthTable table = tissue_depth_table(name);
+  const TissueDepthTable table = tissue_depth_table(reconstruct_table_name(choice.table));
   const TissueDepthQuery query{choice.sex, "", ""};
   if (choice.build.empty()) return select_tissue_depths(table, query);
   const BuildVariants variants = build_variants(table, query, 1.0);
   return choice.build == "slender" ? variants.slender : choice.build == "obese" ? variants.obese : variants.normal;
 }
 
+namespace {
+
+/// The reconstruction job of a session request: what forensim reconstruct runs for the same skull.
+ReconstructJob session_job(const SkullSessionRequest& request) {
+  ReconstructJob job;
+  job.skull = request.skull;
+  job.unit = request.unit;
+  job.landmarks = request.landmarks;
+  job.table = request.depths.table;
+  job.sex = request.depths.sex;
+  job.build = request.depths.build;
+  job.template_detail = request.template_detail;
+  job.interpolated_landmarks = request.interpolated_landmarks;
+  if (request.guides) {
+    job.guides = *request.guides;
+    job.has_guides = true;
+  }
+  job.expressions.clear();  // asked for per request (glb, save)
+  return job;
+}
+
+}  // namespace
+
 SkullSession::SkullSession(std::string id, std::shared_ptr<const TemplateHead> head, const SkullSessionRequest& request)
     : m_id(std::move(id)), m_head(std::move(head)), m_request(request), m_depth_choice(request.depths) {
   touch();
   Stopwatch watch;
-  const TissueDepths depths = as_bad_request("/table", [&] { return select_session_depths(m_depth_choice); });
-  if (request.skull == "builtin") {
-    m_skull.mesh = m_head->skull;
-    m_skull.source = "built-in template skull (head phantom)";
-    m_skull.kind = "builtin";
-  } else {
-    SkullInputOptions options;
-    options.mesh_units.unit = request.unit;
-    m_skull = as_bad_request("/skull", [&] { return load_skull(request.skull, options); });
-  }
-  m_timings_ms["skull"] = ms(watch.lap());
-  LandmarkSet landmarks;
-  if (request.landmarks == "template") {
-    landmarks = template_skull_landmarks(*m_head);
-    m_landmark_origin = "the template's skull landmarks (placed by their definitions)";
-  } else if (request.landmarks == "auto") {
-    const LandmarkDetection detection =
-        as_bad_request("/skull", [&] { return detect_template_landmarks(*m_head, m_skull.mesh); });
-    landmarks = detection.landmarks;
-    m_landmark_origin =
-        "detected: the template's skull landmarks registered onto the skull (similarity, then non-rigid) and "
-        "refined by their definitions";
+  // The inputs the reconstruction reads, each answering on its own field: the table and a landmark file (quick),
+  // then the skull with everything after it.
+  as_bad_request("/table", [&] { return select_session_depths(m_depth_choice); });
+  const bool file_landmarks = request.landmarks != "auto" && request.landmarks != "template";
+  if (file_landmarks) as_bad_request("/landmarks", [&] { return read_landmarks(request.landmarks); });
+  ReconstructInputs in = as_bad_request("/skull", [&] { return prepare_reconstruction(session_job(request), m_head); });
+  m_skull = std::move(in.skull);
+  m_landmark_origin = file_landmarks ? "file " + request.landmarks_label : in.landmark_origin;
+  if (in.detection) {
+    const LandmarkDetection& detection = *in.detection;
     m_detection = {{"similarity_scale", detection.registration.similarity.scale},
                    {"similarity_rms_mm", detection.registration.similarity_rms_mm},
-                   {"non_rigid_rms_mm", detection.registration.rms_mm}};
+                   {"non_rigid_rms_mm", detection.registration.rms_mm},
+                   {"template_carried", in.carried},
+                   {"skull_completed", in.completion.has_value()}};
     nlohmann::json left_out = nlohmann::json::array();
     for (const auto& [name, reason] : detection.left_out) left_out.push_back({{"name", name}, {"reason", reason}});
     m_detection["left_out"] = left_out;
-    // The template carried onto the skull by the registration before the warp (template_carry.hpp), as forensim
-    // reconstruct does with automatic landmarks.
-    m_fitted_head = std::make_shared<const TemplateHead>(carry_template_head(*m_head, detection.registration));
-    m_detection["template_carried"] = true;
-    m_timings_ms["detection"] = ms(watch.lap());
-  } else {
-    landmarks = as_bad_request("/landmarks", [&] { return read_landmarks(request.landmarks); });
-    m_landmark_origin = "file " + request.landmarks_label;
   }
-  ReconstructionOptions options;
-  options.fit.interpolated_landmarks = request.interpolated_landmarks;
+  if (in.carried) m_fitted_head = in.fitted;
+  for (const auto& [stage, seconds] : in.timings.stages()) m_timings_ms[stage] = ms(seconds);
+  watch.lap();
+  // The violations are counted on request (violations()), not with the face.
+  ReconstructionOptions options = in.options;
   options.fit.count_violations = false;
-  options.guides = request.guides;
   m_reconstruction = as_bad_request("/landmarks", [&] {
-    return std::make_unique<Reconstruction>(m_fitted_head ? *m_fitted_head : *m_head, m_skull.mesh, landmarks, depths,
-                                            options);
+    return std::make_unique<Reconstruction>(*in.fitted, m_skull.mesh, in.landmarks, in.depths, options);
   });
   m_timings_ms["reconstruction"] = ms(watch.lap());
   touch();  // idle from when the session is ready, not from when its building began

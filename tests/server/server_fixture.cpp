@@ -1,8 +1,12 @@
 #include "server/server_fixture.hpp"
 
+#include <gtest/gtest.h>
+
 #include <chrono>
+#include <cstring>
 #include <thread>
 
+#include "core/base64.hpp"
 #include "core/run_folder.hpp"
 #include "forensim/mummify_job.hpp"
 #include "server/skull_templates.hpp"
@@ -118,6 +122,16 @@ nlohmann::json TestServer::wait_job(const std::string& id, double seconds) const
 nlohmann::json body_json(const httplib::Result& r) {
   if (!r) return nullptr;
   return nlohmann::json::parse(r->body, nullptr, false);
+}
+
+std::vector<float> floats(const std::string& b64) {
+  std::size_t bad = 0;
+  const auto bytes = base64_decode(b64, bad);
+  EXPECT_TRUE(bytes.has_value());
+  if (!bytes) return {};
+  std::vector<float> out(bytes->size() / sizeof(float));
+  std::memcpy(out.data(), bytes->data(), out.size() * sizeof(float));
+  return out;
 }
 
 }  // namespace forensim::test

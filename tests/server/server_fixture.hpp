@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/types.hpp"
 #include "server/api_server.hpp"
@@ -41,5 +42,7 @@ struct TestServer {
 
 /// The JSON body of a response (null when it is not JSON).
 nlohmann::json body_json(const httplib::Result& r);
+/// The float32 array a base64 string of the API holds (positions_f32 and the like); a bad string fails the test.
+std::vector<float> floats(const std::string& b64);
 
 }  // namespace forensim::test

@@ -25,6 +25,7 @@
 
 using namespace forensim;
 using test::body_json;
+using test::floats;
 namespace fs = std::filesystem;
 
 namespace {
@@ -55,16 +56,6 @@ nlohmann::json ok(const httplib::Result& r, int status = 200) {
 // A session on the built-in skull with the coarse template and its own landmarks (quick: no detection).
 nlohmann::json quick_session(const std::string& landmarks = "template") {
   return {{"template_detail", "coarse"}, {"landmarks", landmarks}};
-}
-
-std::vector<float> floats(const std::string& b64) {
-  std::size_t bad = 0;
-  const auto bytes = base64_decode(b64, bad);
-  EXPECT_TRUE(bytes.has_value());
-  if (!bytes) return {};
-  std::vector<float> out(bytes->size() / sizeof(float));
-  std::memcpy(out.data(), bytes->data(), out.size() * sizeof(float));
-  return out;
 }
 
 double largest_difference(const std::vector<float>& a, const std::vector<float>& b) {

@@ -1,5 +1,6 @@
 #pragma once
-/// The description of a `forensim reconstruct` run, read from a job file (JSON, version 1) or from the
+/// The description of a craniofacial reconstruction (`forensim reconstruct`, the demo, the skull editor's
+/// sessions: reconstruct/reconstruct_face.hpp runs it), read from a job file (JSON, version 1) or from the
 /// command line through the one job loader (core/job.hpp), so a misspelt key is an error naming it.
 ///
 /// Job keys (all optional):
@@ -60,7 +61,7 @@
 #include "craniofacial/face_guides_job.hpp"
 #include "craniofacial/skull_input.hpp"
 
-namespace forensim::cli {
+namespace forensim {
 
 struct ReconstructJob {
   std::string skull = "builtin";
@@ -111,12 +112,8 @@ SkullInputOptions skull_input_options(const ReconstructJob& job);
 /// read_reconstruct_job gives the same job. The guides stay as read (provenance.json records a --guides file).
 nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved);
 
-/// Runs a reconstruction (what `forensim reconstruct` does after reading its job) into the run folder `out`:
-/// every input is read and checked and the head computed before the folder is created. `resolved_job` is
-/// stored in run.json, `guides_record` (the guides as given, or null) in provenance.json. Returns the run's
-/// facts (given_pairs, interpolated_pairs, violations_before, violations_after, seconds_total). Throws the
-/// library's errors (InputError, IoError, JobError, NumericError).
-nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
-                                  const nlohmann::json& resolved_job, const nlohmann::json& guides_record);
+/// The built-in table or CSV file a job's `table` names: "rhine_1983" is its south-west Native American
+/// female column of normal build (the table file's own name), any other value is given to tissue_depth_table.
+std::string reconstruct_table_name(const std::string& table);
 
-}  // namespace forensim::cli
+}  // namespace forensim

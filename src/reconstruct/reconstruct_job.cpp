@@ -1,4 +1,4 @@
-#include "reconstruct_job.hpp"
+#include "reconstruct/reconstruct_job.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "craniofacial/face_expression.hpp"
 
-namespace forensim::cli {
+namespace forensim {
 namespace {
 
 std::string resolve_path(const std::string& value, const std::filesystem::path& base) {
@@ -107,6 +107,10 @@ SkullInputOptions skull_input_options(const ReconstructJob& job) {
   return options;
 }
 
+std::string reconstruct_table_name(const std::string& table) {
+  return table == "rhine_1983" ? "rhine_1983_sw_native_american_female_normal" : table;
+}
+
 nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json resolved) {
   resolved["version"] = 1;
   resolved["skull"] = job.skull;
@@ -142,4 +146,4 @@ nlohmann::json reconstruct_job_record(const ReconstructJob& job, nlohmann::json 
   return resolved;
 }
 
-}  // namespace forensim::cli
+}  // namespace forensim
