@@ -71,6 +71,113 @@ void measure_guides(const ReconstructJob& job, ReconstructInputs& in) {
   in.messages.push_back(line);
 }
 
+/// Which skull and which landmarks a job asks for.
+struct LandmarkChoice {
+  bool builtin_skull = false;  ///< the template's own skull
+  bool phantom_ct = false;     ///< the built-in CT of the head phantom
+  bool from_file = false;      ///< the landmarks are read from a file (read here)
+};
+
+/// The landmark mode: a file, the template's own (for skulls in the template's frame: the built-in skull and the
+/// CT phantom, their default), or detected on the skull with the template's skull as the reference (the default
+/// for any other skull). Refuses the template's landmarks on another skull and an evaluation without a CT; reads
+/// a landmark file.
+LandmarkChoice choose_landmarks(const ReconstructJob& job, ReconstructInputs& in) {
+  LandmarkChoice c;
+  c.builtin_skull = job.ct.empty() && job.skull == "builtin";
+  c.phantom_ct = job.ct == "phantom";
+  in.landmark_mode = job.landmarks;
+  if (in.landmark_mode.empty()) in.landmark_mode = c.builtin_skull || c.phantom_ct ? "template" : "auto";
+  if (in.landmark_mode == "template" && !c.builtin_skull && !c.phantom_ct) {
+    throw InputError("--landmarks", "template",
+                     "only the built-in skull and the CT phantom carry the template's landmarks; give a .mrk.json or "
+                     "CSV file, or 'auto' to detect them");
+  }
+  if (job.evaluate && (c.builtin_skull || (job.ct.empty() && !is_volume_path(job.skull)))) {
+    throw InputError("--evaluate", c.builtin_skull ? "built-in skull" : job.skull,
+                     "the evaluation needs a CT that holds the face (its skin); a mesh skull has none");
+  }
+  c.from_file = in.landmark_mode != "template" && in.landmark_mode != "auto";
+  if (c.from_file) in.landmarks = read_landmarks(in.landmark_mode);
+  return c;
+}
+
+/// A skull file read before the template build starts beside the skull's extraction, so a bad file is an error
+/// in a tenth of a second, not after the template: a CT into in.volume, a mesh returned.
+std::optional<ImportedMesh> read_skull_file(const std::string& path, const SkullInputOptions& options,
+                                            ReconstructInputs& in) {
+  if (is_volume_path(path)) {
+    if (!std::filesystem::exists(path)) throw IoError(path, "does not exist");
+    in.volume = read_volume(path);
+    return std::nullopt;
+  }
+  return import_mesh_with_textures(path, options.mesh_units);
+}
+
+/// Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
+/// scan did not see lie on the registered template, whose missing part completes the skull. Returns the seconds.
+double detect_landmarks(const TemplateHead& reference, ReconstructInputs& in) {
+  Stopwatch part;
+  ScanLandmarkDetection found = detect_scan_landmarks(reference, in.skull.mesh, in.skull.field_of_view);
+  in.detection = std::move(found.detection);
+  in.completion = std::move(found.completion);
+  const double seconds = part.lap();
+  if (in.completion) {
+    in.skull.mesh = in.completion->mesh;
+    in.skull.notes.push_back(fmt::format(
+        "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
+        "triangles of the cut dropped)",
+        found.unseen, in.completion->reference_triangles, in.completion->cap_triangles));
+  }
+  return seconds;
+}
+
+/// The overlapping stages' own times, then the wall time of them together; the landmarks left out as messages.
+void record_stage_times(bool builtin_skull, double template_s, double skull_s, double detection_s, Stopwatch& watch,
+                        ReconstructInputs& in) {
+  in.timings.add("template", template_s);
+  in.timings.add("skull", skull_s);
+  if (!in.detection) {
+    in.timings.add("template and skull (side by side)", watch.lap());
+    return;
+  }
+  for (const auto& [name, reason] : in.detection->left_out)
+    in.messages.push_back(fmt::format("landmark {} left out: {}", name, reason));
+  in.timings.add(in.completion ? "landmark detection and skull completion" : "landmark detection", detection_s);
+  in.timings.add(
+      builtin_skull ? "template and landmark detection" : "template, skull and landmark detection (side by side)",
+      watch.lap());
+}
+
+/// After the skull, template and detection: the warp's landmarks, their origin and head frame, the fit options
+/// and guides, and the template carried onto the skull by the registration that found the landmarks
+/// (template_carry.hpp), so the warp of eq. 1 sets the tissue depths on a head that already lies on this skull.
+void finish_inputs(const ReconstructJob& job, bool from_file, bool registered_skull_is_fitted, Stopwatch& watch,
+                   ReconstructInputs& in) {
+  if (in.detection) {
+    in.landmarks = in.detection->landmarks;
+  } else if (!from_file) {
+    in.landmarks = template_skull_landmarks(*in.head);
+  }
+  in.landmark_origin = landmark_origin(in, from_file);
+  // The skull's head frame where the landmarks' origin gives it: detected, or the template's own.
+  if (in.detection) {
+    in.known_frame = in.detection->frame;
+  } else if (in.landmark_mode == "template") {
+    in.known_frame = template_head_frame(*in.head);
+  }
+  in.options.fit.interpolated_landmarks = job.interpolated_landmarks;
+  if (job.has_guides) in.options.guides = job.guides;
+  if (job.measure_guides) measure_guides(job, in);
+  if (job.carry_template && in.detection && registered_skull_is_fitted) {
+    in.fitted = std::make_shared<const TemplateHead>(carry_template_head(*in.head, in.detection->registration));
+    in.carried = true;
+    in.timings.add("template carried onto the skull", watch.lap());
+  } else {
+    in.fitted = in.head;
+  }
+}
+
 }  // namespace
 
 ReconstructInputs prepare_reconstruction(const ReconstructJob& job, std::shared_ptr<const TemplateHead> prebuilt) {
@@ -82,42 +189,17 @@ ReconstructInputs prepare_reconstruction(const ReconstructJob& job, std::shared_
   select_depths(job, in);
   check_expressions(job.expressions);
 
-  // Landmarks: a file, the template's own (for skulls in the template's frame: the built-in skull and the CT
-  // phantom, their default), or detected on the skull with the template's skull as the reference (the default
-  // for any other skull).
-  const bool builtin_skull = job.ct.empty() && job.skull == "builtin";
-  const bool phantom_ct = job.ct == "phantom";
-  in.landmark_mode = job.landmarks;
-  if (in.landmark_mode.empty()) in.landmark_mode = builtin_skull || phantom_ct ? "template" : "auto";
+  const LandmarkChoice choice = choose_landmarks(job, in);
+  const bool builtin_skull = choice.builtin_skull, phantom_ct = choice.phantom_ct;
   const bool auto_landmarks = in.landmark_mode == "auto";
-  if (in.landmark_mode == "template" && !builtin_skull && !phantom_ct) {
-    throw InputError("--landmarks", "template",
-                     "only the built-in skull and the CT phantom carry the template's landmarks; give a .mrk.json or "
-                     "CSV file, or 'auto' to detect them");
-  }
-  if (job.evaluate && (builtin_skull || (job.ct.empty() && !is_volume_path(job.skull)))) {
-    throw InputError("--evaluate", builtin_skull ? "built-in skull" : job.skull,
-                     "the evaluation needs a CT that holds the face (its skin); a mesh skull has none");
-  }
-  const bool from_file = in.landmark_mode != "template" && !auto_landmarks;
-  if (from_file) in.landmarks = read_landmarks(in.landmark_mode);
   in.timings.add("inputs", watch.lap());
 
-  // The skull's file (a CT or a mesh) is read before the template build starts beside the skull's extraction: a
-  // bad file is an error in a tenth of a second, not after the template.
   const TemplateHeadOptions template_options = template_head_options(job.template_detail);
   const SkullInputOptions skull_options = skull_input_options(job);
   const std::string skull_path = job.ct.empty() ? job.skull : job.ct;
-  std::optional<ImportedMesh> skull_file;
   Stopwatch skull_read;
-  if (!builtin_skull && !phantom_ct) {
-    if (is_volume_path(skull_path)) {
-      if (!std::filesystem::exists(skull_path)) throw IoError(skull_path, "does not exist");
-      in.volume = read_volume(skull_path);
-    } else {
-      skull_file = import_mesh_with_textures(skull_path, skull_options.mesh_units);
-    }
-  }
+  std::optional<ImportedMesh> skull_file =
+      builtin_skull || phantom_ct ? std::nullopt : read_skull_file(skull_path, skull_options, in);
 
   // The template and the skull are independent: a CT's skull is read and extracted while the template is built
   // (each stage's own time is recorded; they overlap).
@@ -143,22 +225,7 @@ ReconstructInputs prepare_reconstruction(const ReconstructJob& job, std::shared_
     }
     skull_s += part.seconds();
   };
-  // Automatic landmarks: the template's skull registered onto the skull, its landmarks refined there; landmarks the
-  // scan did not see lie on the registered template, whose missing part completes the skull.
-  const auto detect = [&](const TemplateHead& reference) {
-    Stopwatch part;
-    ScanLandmarkDetection found = detect_scan_landmarks(reference, in.skull.mesh, in.skull.field_of_view);
-    in.detection = std::move(found.detection);
-    in.completion = std::move(found.completion);
-    detection_s = part.lap();
-    if (in.completion) {
-      in.skull.mesh = in.completion->mesh;
-      in.skull.notes.push_back(fmt::format(
-          "{} landmarks lie outside the scan: completed with the registered template skull ({} triangles, {} cap "
-          "triangles of the cut dropped)",
-          found.unseen, in.completion->reference_triangles, in.completion->cap_triangles));
-    }
-  };
+  const auto detect = [&](const TemplateHead& reference) { detection_s = detect_landmarks(reference, in); };
   const auto template_head = [&]() -> const TemplateHead& { return prebuilt ? *prebuilt : built; };
   bool registered_skull_is_fitted = true;  // the detection's registration maps the fitted template's skull
   if (builtin_skull) {
@@ -204,43 +271,8 @@ ReconstructInputs prepare_reconstruction(const ReconstructJob& job, std::shared_
         0, 2, [&](std::size_t part) { part == 0 ? build_template() : read_skull(); }, 1);
   }
   in.head = prebuilt ? std::move(prebuilt) : std::make_shared<const TemplateHead>(std::move(built));
-  in.timings.add("template", template_s);
-  in.timings.add("skull", skull_s);
-  if (in.detection) {
-    for (const auto& [name, reason] : in.detection->left_out)
-      in.messages.push_back(fmt::format("landmark {} left out: {}", name, reason));
-    in.timings.add(in.completion ? "landmark detection and skull completion" : "landmark detection", detection_s);
-    in.timings.add(
-        builtin_skull ? "template and landmark detection" : "template, skull and landmark detection (side by side)",
-        watch.lap());
-  } else {
-    in.timings.add("template and skull (side by side)", watch.lap());
-  }
-  if (in.detection) {
-    in.landmarks = in.detection->landmarks;
-  } else if (!from_file) {
-    in.landmarks = template_skull_landmarks(*in.head);
-  }
-  in.landmark_origin = landmark_origin(in, from_file);
-  // The skull's head frame where the landmarks' origin gives it: detected, or the template's own.
-  if (in.detection) {
-    in.known_frame = in.detection->frame;
-  } else if (in.landmark_mode == "template") {
-    in.known_frame = template_head_frame(*in.head);
-  }
-
-  in.options.fit.interpolated_landmarks = job.interpolated_landmarks;
-  if (job.has_guides) in.options.guides = job.guides;
-  if (job.measure_guides) measure_guides(job, in);
-  // The template carried onto the skull by the registration that found the landmarks (template_carry.hpp), so the
-  // warp of eq. 1 sets the tissue depths on a head that already lies on this skull.
-  if (job.carry_template && in.detection && registered_skull_is_fitted) {
-    in.fitted = std::make_shared<const TemplateHead>(carry_template_head(*in.head, in.detection->registration));
-    in.carried = true;
-    in.timings.add("template carried onto the skull", watch.lap());
-  } else {
-    in.fitted = in.head;
-  }
+  record_stage_times(builtin_skull, template_s, skull_s, detection_s, watch, in);
+  finish_inputs(job, choice.from_file, registered_skull_is_fitted, watch, in);
   return in;
 }
 
