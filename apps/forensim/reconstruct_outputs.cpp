@@ -244,11 +244,11 @@ void record_facts(RunFolder& run, const ReconstructedFace& face) {
 nlohmann::json run_reconstruction(const ReconstructJob& job, const std::filesystem::path& out,
                                   const nlohmann::json& resolved_job, const nlohmann::json& guides_record) {
   Stopwatch total;
-  const ReconstructedFace face = reconstruct_face(job);
+  ReconstructedFace face = reconstruct_face(job);
   for (const std::string& line : face.inputs.messages) std::printf("%s\n", line.c_str());
   Timings timings = face.timings;
   Stopwatch watch;
-  TriMesh final_skin = face.skin;
+  TriMesh& final_skin = face.skin;
   final_skin.material.name = "skin";
   const FaceMaps maps = face_maps(job, *face.inputs.head);
   if (maps.epidermis) timings.add("skin maps", watch.lap());

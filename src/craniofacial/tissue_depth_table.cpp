@@ -316,6 +316,13 @@ TissueDepths sample_tissue_depths(const TissueDepths& depths, std::uint64_t seed
   return out;
 }
 
+const TissueDepths& BuildVariants::of(const std::string& build) const {
+  if (build == "slender") return slender;
+  if (build == "normal") return normal;
+  if (build == "obese") return obese;
+  throw InputError("build", build, "is not slender, normal or obese");
+}
+
 BuildVariants build_variants(const TissueDepthTable& table, const TissueDepthQuery& query, double k_sd) {
   BuildVariants out;
   bool from_groups = true;

@@ -134,6 +134,9 @@ TissueDepths sample_tissue_depths(const TissueDepths& depths, std::uint64_t seed
 struct BuildVariants {
   TissueDepths slender, normal, obese;
   std::string method;  ///< "table groups" or "mean -/+ k SD"
+
+  /// The variant named "slender", "normal" or "obese". Throws InputError naming "build" for another name.
+  const TissueDepths& of(const std::string& build) const;
 };
 /// Slender, normal and obese depths for the sex and population of `query` (its build is ignored): the table's
 /// own slender, normal and obese groups when it has all three, else the selected group's mean - k SD, mean and

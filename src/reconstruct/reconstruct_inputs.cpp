@@ -30,7 +30,7 @@ void select_depths(const ReconstructJob& job, ReconstructInputs& in) {
     return;
   }
   const BuildVariants variants = build_variants(in.table, query, job.build_sd);
-  in.depths = job.build == "slender" ? variants.slender : job.build == "obese" ? variants.obese : variants.normal;
+  in.depths = variants.of(job.build);
   in.build_method = variants.method;
 }
 

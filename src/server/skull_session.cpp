@@ -53,8 +53,7 @@ TissueDepths select_session_depths(const SkullDepthChoice& choice) {
   const TissueDepthTable table = tissue_depth_table(reconstruct_table_name(choice.table));
   const TissueDepthQuery query{choice.sex, "", ""};
   if (choice.build.empty()) return select_tissue_depths(table, query);
-  const BuildVariants variants = build_variants(table, query, 1.0);
-  return choice.build == "slender" ? variants.slender : choice.build == "obese" ? variants.obese : variants.normal;
+  return build_variants(table, query, 1.0).of(choice.build);
 }
 
 namespace {

@@ -142,6 +142,11 @@ TEST(TissueDepthTable, BuildVariantsComeFromTheTablesOwnGroups) {
   EXPECT_EQ(*v.obese.depth_mm("n"), 8.0);
   EXPECT_EQ(*v.slender.depth_mm("g"), 4.0);
   EXPECT_FALSE(v.obese.depth_mm("g"));
+  // By name, as jobs give the build.
+  EXPECT_EQ(*v.of("slender").depth_mm("n"), 5.0);
+  EXPECT_EQ(*v.of("normal").depth_mm("n"), 6.0);
+  EXPECT_EQ(*v.of("obese").depth_mm("n"), 8.0);
+  EXPECT_THROW(v.of("athletic"), InputError);
 }
 
 TEST(TissueDepthTable, TablesWithoutSdsOrBuildGroupsGiveNoVariants) {

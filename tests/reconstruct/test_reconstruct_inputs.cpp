@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -44,32 +44,34 @@ std::string error_of(F&& body) {
 
 TEST(ReconstructInputs, BadJobsFailBeforeTheTemplateNamingTheInput) {
   const std::filesystem::path dir = test::scratch_dir("reconstruct_inputs_bad");
-  ReconstructJob job = coarse_job();
-  job.expressions = {"smile", "smile"};
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("listed twice"), std::string::npos);
-  job = coarse_job();
-  job.expressions = {"grin"};
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("grin"), std::string::npos);
-  job = coarse_job();
-  job.table = (dir / "no_table.csv").string();
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("no_table.csv"), std::string::npos);
-  job = coarse_job();
-  job.skull = (dir / "skull.obj").string();
-  job.landmarks = "template";
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("template"), std::string::npos);
-  job.landmarks = "auto";
-  job.evaluate = true;
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("skull.obj"), std::string::npos);
-  job.evaluate = false;
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("skull.obj"), std::string::npos);
-  job = coarse_job();
-  job.ct = (dir / "missing.nrrd").string();
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("missing.nrrd"), std::string::npos);
-  job = coarse_job();
-  job.landmarks = (dir / "none.mrk.json").string();
-  EXPECT_NE(error_of([&] { prepare_reconstruction(job); }).find("none.mrk.json"), std::string::npos);
+  // Each case: a change to the coarse job, and a text the error must hold.
+  const auto fails_naming = [](const std::function<void(ReconstructJob&)>& change, const std::string& text) {
+    ReconstructJob job = coarse_job();
+    change(job);
+    const std::string message = error_of([&] { prepare_reconstruction(job); });
+    EXPECT_NE(message.find(text), std::string::npos) << "'" << message << "' should name " << text;
+  };
+  fails_naming([](ReconstructJob& j) { j.expressions = {"smile", "smile"}; }, "listed twice");
+  fails_naming([](ReconstructJob& j) { j.expressions = {"grin"}; }, "grin");
+  fails_naming([&](ReconstructJob& j) { j.table = (dir / "no_table.csv").string(); }, "no_table.csv");
+  const std::string skull = (dir / "skull.obj").string();
+  fails_naming(
+      [&](ReconstructJob& j) {
+        j.skull = skull;
+        j.landmarks = "template";
+      },
+      "template");
+  fails_naming(
+      [&](ReconstructJob& j) {
+        j.skull = skull;
+        j.evaluate = true;
+      },
+      "skull.obj");
+  fails_naming([&](ReconstructJob& j) { j.skull = skull; }, "skull.obj");
+  fails_naming([&](ReconstructJob& j) { j.ct = (dir / "missing.nrrd").string(); }, "missing.nrrd");
+  fails_naming([&](ReconstructJob& j) { j.landmarks = (dir / "none.mrk.json").string(); }, "none.mrk.json");
   // A prebuilt template head stands for the built-in one only.
-  job = coarse_job();
+  ReconstructJob job = coarse_job();
   job.template_file = (dir / "head.template").string();
   EXPECT_THROW(prepare_reconstruction(job, std::make_shared<const TemplateHead>()), std::invalid_argument);
 }
